@@ -1,0 +1,78 @@
+# The project's verbs. `make serve` and `make test` are the two README commands;
+# both set up a fresh machine first. Every target is idempotent: stamps in .make/
+# record what is done, so a second run skips it.
+
+SHELL := /bin/bash
+.DEFAULT_GOAL := help
+
+VENV    := .venv
+PY      := $(VENV)/bin/python
+STAMPS  := .make
+HOST    ?= 127.0.0.1
+PORT    ?= 4000
+
+# Debian packages the site, the renderer and the URDF checks need.
+APT_PACKAGES := jekyll ruby-jekyll-feed ruby-jekyll-seo-tag ruby-jekyll-sitemap bundler \
+                ruby-kramdown-parser-gfm ruby-webrick libosmesa6 liburdfdom-tools
+
+SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
+
+# MuJoCo renders off-screen; the variable must be set before `import mujoco`.
+export MUJOCO_GL ?= osmesa
+# Jekyll: do not try to reach the gem index (offline build with Debian's gems).
+export JEKYLL_ENV ?= production
+
+.PHONY: help setup media build serve test clean distclean
+
+help:
+	@echo "make serve   set up, regenerate stale figures, build and serve the site at http://$(HOST):$(PORT)"
+	@echo "make test    set up, then run every test"
+	@echo "make build   build the site into _site/"
+	@echo "make media   regenerate figures whose inputs changed"
+	@echo "make clean   remove build outputs (keeps .venv and node_modules)"
+
+setup: $(STAMPS)/apt $(STAMPS)/venv $(STAMPS)/npm
+
+$(STAMPS)/apt: Makefile
+	@missing=$$(for p in $(APT_PACKAGES); do \
+	    dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null | grep -q '^install ok installed' || echo $$p; done); \
+	if [ -n "$$missing" ]; then \
+	    echo "Installing Debian packages:" $$missing; \
+	    $(SUDO) apt-get update -qq && \
+	    DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq --no-install-recommends $$missing; \
+	fi
+	@mkdir -p $(STAMPS) && touch $@
+
+$(STAMPS)/venv: requirements.txt pyproject.toml
+	@test -x $(PY) || python3 -m venv $(VENV)
+	$(PY) -m pip install -q --disable-pip-version-check -r requirements.txt
+	$(PY) -m pip install -q --disable-pip-version-check --no-deps -e .
+	@mkdir -p $(STAMPS) && touch $@
+
+$(STAMPS)/npm: package.json package-lock.json
+	npm ci --no-audit --no-fund --loglevel=error
+	@mkdir -p $(STAMPS) && touch $@
+
+# Front-end files the pages load, copied from node_modules (no CDN at run time).
+assets/vendor/.done: $(STAMPS)/npm tools/copy-vendor.sh
+	bash tools/copy-vendor.sh
+	@touch $@
+
+media: setup
+	$(PY) -m sw2sim.media
+
+build: setup media assets/vendor/.done
+	bundle exec jekyll build --quiet
+
+serve: build
+	@echo "Serving at http://$(HOST):$(PORT) (Ctrl-C to stop)"
+	bundle exec jekyll serve --skip-initial-build --no-watch --host $(HOST) --port $(PORT)
+
+test: setup assets/vendor/.done
+	$(PY) -m pytest
+
+clean:
+	rm -rf _site .jekyll-cache .pytest_cache MUJOCO_LOG.TXT assets/vendor
+
+distclean: clean
+	rm -rf $(VENV) node_modules $(STAMPS)

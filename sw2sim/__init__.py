@@ -1,0 +1,1 @@
+"""From a SolidWorks-exported URDF package to a MuJoCo simulation."""

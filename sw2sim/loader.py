@@ -1,0 +1,230 @@
+"""Load a package in the SolidWorks-to-URDF exporter's layout as a MuJoCo model specification.
+
+MuJoCo reads URDF, but an exported package does not load as it is: mesh paths use
+`package://`, visual meshes are thrown away by default, a base welded to the world
+collides with its own wheels, and there is nothing to stand on or look through.
+`load_package` fixes exactly those things and nothing else, and says what is wrong
+(with the file and line) when the package itself is broken.
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+from lxml import etree
+
+# Off-screen rendering needs the GL platform chosen before mujoco is first imported.
+os.environ.setdefault("MUJOCO_GL", "osmesa")
+import mujoco  # noqa: E402
+
+
+class LoadError(Exception):
+    """A package that cannot be loaded; the message names the file (and line) and the fix."""
+
+    def __init__(self, file: Path | str, message: str, line: int | None = None):
+        self.file, self.line, self.message = str(file), line, message
+        where = f"{self.file}:{line}" if line else self.file
+        super().__init__(f"{where}: {message}")
+
+
+@dataclass(frozen=True)
+class Package:
+    """Where a package's files are."""
+
+    root: Path          # the folder holding package.xml (or the URDF's folder when there is none)
+    name: str           # the name package:// URLs must use
+    urdf: Path
+
+
+def find_package(path: str | os.PathLike) -> Package:
+    """Locate the URDF and the package root from a package folder or a .urdf file."""
+    path = Path(path)
+    if not path.exists():
+        raise LoadError(path, "no such file or folder; give a package folder or a .urdf file")
+    if path.is_dir():
+        root = path
+        candidates = sorted((path / "urdf").glob("*.urdf")) or sorted(path.glob("*.urdf"))
+        if not candidates:
+            raise LoadError(path, "no URDF found; an exported package keeps it in urdf/<name>.urdf")
+        preferred = [c for c in candidates if c.stem == path.name]
+        urdf = (preferred or candidates)[0]
+    else:
+        urdf = path
+        root = path.parent.parent if path.parent.name == "urdf" else path.parent
+    name = root.name
+    manifest = root / "package.xml"
+    if manifest.is_file():
+        try:
+            tree = etree.parse(str(manifest), _parser())
+            found = tree.findtext("name")
+            if found:
+                name = found.strip()
+        except etree.XMLSyntaxError as exc:
+            raise LoadError(manifest, f"not well-formed XML: {exc.msg}", exc.lineno) from None
+    return Package(root=root.resolve(), name=name, urdf=urdf.resolve())
+
+
+def _parser() -> etree.XMLParser:
+    # Never expand entities or fetch anything named by the file.
+    return etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False, huge_tree=False)
+
+
+def resolve_mesh(package: Package, filename: str, urdf: Path, line: int | None) -> Path:
+    """Turn a URDF mesh filename into a file inside the package, or raise LoadError."""
+    if filename.startswith("package://"):
+        rest = filename[len("package://"):]
+        pkg, _, rel = rest.partition("/")
+        if pkg != package.name:
+            raise LoadError(urdf, f"mesh {filename!r} names package {pkg!r}, but this package is "
+                            f"{package.name!r} (package.xml); rename one so they match", line)
+        target = package.root / rel
+    elif filename.startswith("file://"):
+        target = Path(filename[len("file://"):])
+    else:
+        target = urdf.parent / filename
+    target = target.resolve()
+    if package.root not in target.parents:
+        raise LoadError(urdf, f"mesh {filename!r} points outside the package folder {package.root}; "
+                        "copy the mesh into meshes/ and use package://", line)
+    if not target.is_file():
+        raise LoadError(urdf, f"mesh {filename!r} not found (looked for {target}); "
+                        "export again with meshes, or fix the path", line)
+    return target
+
+
+def load_package(path: str | os.PathLike, *, fixed_base: bool = True) -> mujoco.MjSpec:
+    """A MuJoCo model specification of an exported package, ready to compile.
+
+    - `package://` mesh paths resolve to files inside the package;
+    - visual meshes are kept (collision geoms: group 0; visual geoms: group 1, no contacts);
+    - a base fixed to the world does not collide with the links it carries directly
+      (their meshes overlap at the axles and would lock the joints);
+    - a floor (at z = 0, or under the model's lowest point if that is lower), a light
+      and a camera named "overview" are added;
+    - `fixed_base=False` gives the root link a free joint instead, lifted so it rests
+      on the floor.
+    """
+    package = find_package(path)
+    urdf = package.urdf
+    try:
+        tree = etree.parse(str(urdf), _parser())
+    except etree.XMLSyntaxError as exc:
+        raise LoadError(urdf, f"not well-formed XML: {exc.msg}", exc.lineno) from None
+    robot = tree.getroot()
+    if robot.tag != "robot":
+        raise LoadError(urdf, f"the root element is <{robot.tag}>, a URDF starts with <robot>", robot.sourceline)
+
+    for mesh in robot.iter("mesh"):
+        filename = mesh.get("filename")
+        if not filename:
+            raise LoadError(urdf, "<mesh> without a filename", mesh.sourceline)
+        mesh.set("filename", str(resolve_mesh(package, filename, urdf, mesh.sourceline)))
+
+    for old in robot.findall("mujoco"):
+        robot.remove(old)
+    extension = etree.SubElement(robot, "mujoco")
+    etree.SubElement(extension, "compiler", discardvisual="false", strippath="false",
+                     fusestatic="false", balanceinertia="false")
+
+    xml = etree.tostring(robot, encoding="unicode")
+    try:
+        spec = mujoco.MjSpec.from_string(xml)
+    except ValueError as exc:
+        raise LoadError(urdf, f"MuJoCo cannot read this URDF: {exc}") from None
+    spec.modelname = robot.get("name") or package.name
+    spec.option.integrator = mujoco.mjtIntegrator.mjINT_IMPLICITFAST
+
+    root_body = _root_body(spec, urdf)
+    if fixed_base:
+        _exclude_static_children(spec)
+    else:
+        root_body.add_freejoint()
+    _add_scene(spec, urdf, root_body, lift=not fixed_base)
+    return spec
+
+
+def _root_body(spec: mujoco.MjSpec, urdf: Path) -> mujoco.MjsBody:
+    roots = [b for b in spec.worldbody.bodies]
+    if not roots:
+        raise LoadError(urdf, "the URDF has no links that MuJoCo can simulate")
+    if len(roots) > 1:
+        names = ", ".join(b.name for b in roots)
+        raise LoadError(urdf, f"several root links ({names}); join them to one base_link with joints")
+    return roots[0]
+
+
+def _exclude_static_children(spec: mujoco.MjSpec) -> None:
+    """Exclude contacts between a body held by the world and each body it carries directly.
+
+    MuJoCo filters parent-child contacts only when the parent moves; for a base welded
+    to the world the overlapping meshes at each axle would lock the wheels.
+    """
+
+    def walk(body, static: bool):
+        for child in body.bodies:
+            if static and body is not spec.worldbody:
+                spec.add_exclude(bodyname1=body.name, bodyname2=child.name)
+            walk(child, static and not child.joints)
+
+    walk(spec.worldbody, True)
+
+
+def _add_scene(spec: mujoco.MjSpec, urdf: Path, root: mujoco.MjsBody, lift: bool) -> None:
+    try:
+        model = spec.compile()
+    except ValueError as exc:
+        raise LoadError(urdf, f"MuJoCo cannot compile this model: {exc}") from None
+    data = mujoco.MjData(model)
+    mujoco.mj_kinematics(model, data)
+    low = _lowest_collision_point(model, data)
+    if lift:
+        root.pos = np.asarray(root.pos) + [0, 0, max(0.0, -low) + 0.001]
+        floor_z = 0.0
+    else:
+        floor_z = min(0.0, low)
+
+    tex = spec.add_texture(name="sw2sim_grid", type=mujoco.mjtTexture.mjTEXTURE_2D,
+                           builtin=mujoco.mjtBuiltin.mjBUILTIN_CHECKER, width=512, height=512,
+                           rgb1=[0.86, 0.88, 0.9], rgb2=[0.78, 0.8, 0.83])
+    spec.add_material(name="sw2sim_floor", texrepeat=[8, 8], reflectance=0.05,
+                      textures=["", tex.name])
+    spec.worldbody.add_geom(name="floor", type=mujoco.mjtGeom.mjGEOM_PLANE, size=[0, 0, 0.05],
+                            pos=[0, 0, floor_z], material="sw2sim_floor")
+    spec.worldbody.add_light(name="sun", type=mujoco.mjtLightType.mjLIGHT_DIRECTIONAL,
+                             pos=[0, 0, 5], dir=[0.3, 0.4, -1], diffuse=[0.7, 0.7, 0.7],
+                             ambient=[0.3, 0.3, 0.3], castshadow=True)
+
+    centre, extent = model.stat.center.copy(), float(model.stat.extent)
+    distance = 2.2 * extent
+    azimuth, elevation = np.radians(-135.0), np.radians(-30.0)
+    forward = np.array([np.cos(elevation) * np.cos(azimuth), np.cos(elevation) * np.sin(azimuth),
+                        np.sin(elevation)])
+    right = np.cross(forward, [0, 0, 1])
+    right /= np.linalg.norm(right)
+    up = np.cross(right, forward)
+    spec.worldbody.add_camera(name="overview", pos=centre - distance * forward,
+                              xyaxes=[*right, *up], fovy=40)
+    spec.visual.global_.offwidth = max(spec.visual.global_.offwidth, 1600)
+    spec.visual.global_.offheight = max(spec.visual.global_.offheight, 1200)
+    spec.stat.center = centre
+    spec.stat.extent = extent
+
+
+def _lowest_collision_point(model: mujoco.MjModel, data: mujoco.MjData) -> float:
+    """The lowest z of any colliding geom at the rest pose (mesh vertices where available)."""
+    low = np.inf
+    for g in range(model.ngeom):
+        if model.geom_contype[g] == 0 and model.geom_conaffinity[g] == 0:
+            continue
+        if model.geom_type[g] == mujoco.mjtGeom.mjGEOM_MESH:
+            m = model.geom_dataid[g]
+            start, count = model.mesh_vertadr[m], model.mesh_vertnum[m]
+            verts = model.mesh_vert[start:start + count]
+            world = verts @ data.geom_xmat[g].reshape(3, 3).T + data.geom_xpos[g]
+            low = min(low, float(world[:, 2].min()))
+        else:
+            low = min(low, float(data.geom_xpos[g][2] - model.geom_rbound[g]))
+    return 0.0 if low == np.inf else low
