@@ -188,14 +188,19 @@ def _add_scene(spec: mujoco.MjSpec, urdf: Path, root: mujoco.MjsBody, lift: bool
 
     tex = spec.add_texture(name="sw2sim_grid", type=mujoco.mjtTexture.mjTEXTURE_2D,
                            builtin=mujoco.mjtBuiltin.mjBUILTIN_CHECKER, width=512, height=512,
-                           rgb1=[0.86, 0.88, 0.9], rgb2=[0.78, 0.8, 0.83])
-    spec.add_material(name="sw2sim_floor", texrepeat=[8, 8], reflectance=0.05,
+                           rgb1=[0.82, 0.84, 0.87], rgb2=[0.72, 0.75, 0.79])
+    spec.add_material(name="sw2sim_floor", texrepeat=[8, 8], reflectance=0.0,
                       textures=["", tex.name])
+    spec.add_texture(name="sw2sim_sky", type=mujoco.mjtTexture.mjTEXTURE_SKYBOX,
+                     builtin=mujoco.mjtBuiltin.mjBUILTIN_GRADIENT, width=256, height=256,
+                     rgb1=[0.97, 0.98, 1.0], rgb2=[0.80, 0.85, 0.92])
+    spec.visual.headlight.diffuse = [0.45, 0.45, 0.45]
+    spec.visual.headlight.ambient = [0.15, 0.15, 0.15]
     spec.worldbody.add_geom(name="floor", type=mujoco.mjtGeom.mjGEOM_PLANE, size=[0, 0, 0.05],
                             pos=[0, 0, floor_z], material="sw2sim_floor")
     spec.worldbody.add_light(name="sun", type=mujoco.mjtLightType.mjLIGHT_DIRECTIONAL,
-                             pos=[0, 0, 5], dir=[0.3, 0.4, -1], diffuse=[0.7, 0.7, 0.7],
-                             ambient=[0.3, 0.3, 0.3], castshadow=True)
+                             pos=[0, 0, 5], dir=[0.3, 0.4, -1], diffuse=[0.55, 0.55, 0.55],
+                             ambient=[0.1, 0.1, 0.1], castshadow=True)
 
     centre, extent = model.stat.center.copy(), float(model.stat.extent)
     distance = 2.2 * extent

@@ -3,6 +3,7 @@
 `python -m sw2sim.practices` regenerates every example package under examples/.
 """
 
+import importlib.util
 from importlib import import_module
 from pathlib import Path
 
@@ -17,3 +18,12 @@ def design(practice: str):
 
 def package_dir(practice: str) -> Path:
     return ROOT / "examples" / design(practice).PACKAGE
+
+
+def load_script(path: str):
+    """Import a lesson script (such as examples/example_1/scripts/periodic_force.py) by its path."""
+    file = ROOT / path
+    spec = importlib.util.spec_from_file_location(file.stem, file)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module

@@ -105,6 +105,15 @@ def base() -> Part:
     )
 
 
+# Added to launch/gazebo.launch in "A custom node": the ROS version of the pulse script.
+GAZEBO_NODES = """  <node
+    name="periodic_force"
+    pkg="example_1"
+    type="periodic_force_node.py"
+    output="screen" />
+"""
+
+
 def robot() -> Robot:
     """The assembly as exported, plus what Practice 1 adds by hand (colours, the world link)."""
     wheel_part = wheel()
@@ -130,4 +139,4 @@ def parts() -> list[Part]:
 
 def write(root: Path | None = None) -> list[Path]:
     from .. import ROOT
-    return write_package(robot(), (root or ROOT / "examples") / PACKAGE)
+    return write_package(robot(), (root or ROOT / "examples") / PACKAGE, gazebo_nodes=GAZEBO_NODES)

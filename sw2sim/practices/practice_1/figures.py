@@ -1,0 +1,150 @@
+"""The figures of Practice 1's pages, made from the example package and its scripts."""
+
+from pathlib import Path
+
+import numpy as np
+
+from ... import load_package
+from ...media import Figure
+from ...plotting import figure, save
+from ...render import render, save_png
+from .. import load_script
+from . import design
+
+import mujoco  # noqa: E402  (after sw2sim has chosen the GL platform)
+
+PACKAGE = "examples/example_1"
+WHEEL_JOINTS = [name.replace("_wheel", "_joint") for name in design.WHEELS]
+
+
+def pulses():
+    return load_script(f"{PACKAGE}/scripts/periodic_force.py")
+
+
+def drawing(part_factory):
+    def make(path: Path) -> None:
+        from ...drawing import part_drawing_svg
+        path.write_text(part_drawing_svg(part_factory()))
+    make.__qualname__ = f"drawing_{part_factory.__name__}"
+    return make
+
+
+def assembly(path: Path) -> None:
+    from ...drawing import assembly_drawing_svg
+    path.write_text(assembly_drawing_svg(design.robot()))
+
+
+def model_picture(path: Path) -> None:
+    model = load_package(PACKAGE).compile()
+    data = mujoco.MjData(model)
+    save_png(render(model, data, width=960, height=600, azimuth=135, elevation=-28), path)
+
+
+def axes_picture(path: Path) -> None:
+    """Joint axes drawn as arrows: two wheels share each axis line."""
+    model = load_package(PACKAGE).compile()
+    model.vis.scale.jointlength = 3.0
+    model.vis.scale.jointwidth = 0.25
+    model.geom_rgba[:, 3] = np.where(model.geom_group == 1, 0.45, model.geom_rgba[:, 3])
+    data = mujoco.MjData(model)
+    save_png(render(model, data, width=960, height=600, azimuth=150, elevation=-50,
+                    show_joints=True, shadows=False), path)
+
+
+def free_base_run(duration: float, frames=()):
+    """Drive the wheels with the pulse script while the base is free; return (t, x, pictures)."""
+    model = load_package(PACKAGE, fixed_base=False).compile()
+    data = mujoco.MjData(model)
+    node = pulses()
+    base = model.body("base_link").id
+    dofs = [model.joint(j).dofadr[0] for j in WHEEL_JOINTS]
+    times, xs, pictures = [], [], []
+    mujoco.mj_forward(model, data)
+    start = data.xpos[base].copy()
+    pending = sorted(frames)
+    while data.time < duration:
+        data.qfrc_applied[dofs] = node.wheel_torque(data.time)
+        if pending and data.time >= pending[0] - 1e-9:
+            pending.pop(0)
+            pictures.append(render(model, data, width=640, height=360, lookat=[0.75, 0, 0.12],
+                                   distance=1.9, azimuth=90, elevation=-8))
+        times.append(data.time)
+        xs.append(np.linalg.norm(data.xpos[base][:2] - start[:2]))
+        mujoco.mj_step(model, data)
+    return np.array(times), np.array(xs), pictures
+
+
+def locked_base_run(duration: float):
+    model = load_package(PACKAGE).compile()
+    data = mujoco.MjData(model)
+    node = pulses()
+    base = model.body("base_link").id
+    mujoco.mj_forward(model, data)
+    start = data.xpos[base].copy()
+    dofs = [model.joint(j).dofadr[0] for j in WHEEL_JOINTS]
+    times, xs = [], []
+    while data.time < duration:
+        data.qfrc_applied[dofs] = node.wheel_torque(data.time)
+        times.append(data.time)
+        xs.append(np.linalg.norm(data.xpos[base] - start))
+        mujoco.mj_step(model, data)
+    return np.array(times), np.array(xs)
+
+
+def unlocked_strip(path: Path) -> None:
+    moments = [0.0, 0.5, 1.0, 1.5]
+    _, _, pictures = free_base_run(max(moments) + 0.01, frames=moments)
+    fig, axes = figure(1, len(pictures), figsize=(12, 2.4))
+    for ax, pic, t in zip(axes, pictures, moments):
+        ax.imshow(pic)
+        ax.set_title(f"t = {t:.1f} s")
+        ax.set_axis_off()
+    save(fig, path)
+
+
+def base_drift(path: Path) -> None:
+    duration = 3.0
+    t_free, x_free, _ = free_base_run(duration)
+    t_locked, x_locked = locked_base_run(duration)
+    fig, ax = figure()
+    ax.axvspan(0, 1, color="0.5", alpha=0.15, label="1 N·m on each wheel")
+    ax.plot(t_free, x_free, label="base free (no world joint)")
+    ax.plot(t_locked, x_locked, label="base locked to the world")
+    ax.set_xlabel("time [s]")
+    ax.set_ylabel("distance the base has moved [m]")
+    ax.legend(loc="upper left")
+    save(fig, path)
+
+
+def wheel_velocity(path: Path) -> None:
+    model = load_package(PACKAGE).compile()
+    data = mujoco.MjData(model)
+    t, tau, omega = pulses().run(model, data, WHEEL_JOINTS, duration=30.0)
+    fig, (ax_w, ax_t) = figure(2, 1, sharex=True, figsize=(8, 5),
+                               gridspec_kw={"height_ratios": [3, 1]})
+    for i, name in enumerate(WHEEL_JOINTS):
+        ax_w.plot(t, omega[:, i], label=name, lw=2.2 if i == 0 else 1.2,
+                  ls="-" if i == 0 else (0, (4, 2 + i)))
+    ax_w.set_ylabel("wheel speed [rad/s]")
+    ax_w.legend(ncols=2, loc="upper left")
+    ax_t.plot(t, tau, color="tab:red", drawstyle="steps-post")
+    ax_t.set_ylabel("torque [N·m]")
+    ax_t.set_xlabel("time [s]")
+    ax_t.set_xticks(np.arange(0, 31, 5))
+    save(fig, path)
+
+
+MEDIA = "media/practice-1"
+DESIGN = ["sw2sim/practices/practice_1/design.py", "sw2sim/parts.py", "sw2sim/drawing.py"]
+SIM = [PACKAGE, "sw2sim/loader.py", "sw2sim/render.py", "sw2sim/plotting.py"]
+
+FIGURES = [
+    Figure(f"{MEDIA}/base.svg", drawing(design.base), DESIGN, "Drawing of the base"),
+    Figure(f"{MEDIA}/wheel.svg", drawing(design.wheel), DESIGN, "Drawing of the wheel"),
+    Figure(f"{MEDIA}/assembly.svg", assembly, DESIGN + ["sw2sim/exporter_format.py"], "Assembly"),
+    Figure(f"{MEDIA}/model.png", model_picture, SIM, "The model in MuJoCo"),
+    Figure(f"{MEDIA}/joint_axes.png", axes_picture, SIM, "Joint axes"),
+    Figure(f"{MEDIA}/unlocked_base.png", unlocked_strip, SIM, "A base that is not locked"),
+    Figure(f"{MEDIA}/base_drift.png", base_drift, SIM, "Locked and free base"),
+    Figure(f"{MEDIA}/wheel_velocity.png", wheel_velocity, SIM, "Wheel speed under pulses"),
+]
