@@ -1,0 +1,239 @@
+"""Find the ```python blocks of a lesson page, with their page lines and skip reasons."""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from markdown_it import MarkdownIt
+
+DEFAULT_TIMEOUT = 120.0
+LANGUAGE = "python"
+
+# A kramdown block attribute list on a line of its own, possibly inside a blockquote.
+_IAL = re.compile(r"^\s*(?:>\s*)*\{:(?P<body>.*)\}\s*$")
+_SKIP = re.compile(r"""(?<![\w-])data-skip\s*=\s*(?:"(?P<dq>[^"]*)"|'(?P<sq>[^']*)')""")
+_INCLUDE = re.compile(r"^\{%-?\s*include_code\s+(?P<args>.*?)\s*-?%\}$")
+# Same arguments as _plugins/include_code.rb: a path, optionally quoted, and `indent=N`
+# (which only matters for the rendered page: the fence's content arrives dedented here).
+_INCLUDE_ARGS = re.compile(r"""^(?:"(?P<dq>[^"]+)"|'(?P<sq>[^']+)'|(?P<bare>\S+))(?:\s+indent=\d+)?$""")
+_RAW_TAG = re.compile(r"\{%-?\s*(?P<end>end)?raw\s*-?%\}")
+_TIMEOUT = re.compile(r"^snippet_timeout\s*:\s*(?P<value>\S+)\s*(?:#.*)?$")
+_NO_LIQUID = re.compile(r"^render_with_liquid\s*:\s*false\s*(?:#.*)?$")
+# Names that look like Python but are not run: better an error than a silent hole.
+_PYTHON_LIKE = re.compile(r"^(?:python\S*|py|py3)$", re.IGNORECASE)
+
+
+@dataclass(frozen=True)
+class Block:
+    """One ```python fence of a page."""
+
+    page: str  # page path as reported, relative to the repository root
+    line: int  # 1-based page line of the first code line
+    code: str  # what runs: the fence's text, or the included file's text
+    skip: str | None = None  # reason from `{: data-skip="..."}`, None = runs
+    include: str | None = None  # file named by `{% include_code ... %}`
+
+    @property
+    def filename(self) -> str:
+        """File name the code is compiled under, so tracebacks point at it."""
+        return self.include or self.page
+
+    @property
+    def location(self) -> str:
+        return f"{self.page}:{self.line}"
+
+
+@dataclass(frozen=True)
+class ParseError:
+    """A page mistake that would make CI untrustworthy, at a page line."""
+
+    page: str
+    line: int
+    message: str
+
+    def __str__(self) -> str:
+        return f"{self.page}:{self.line}: {self.message}"
+
+
+@dataclass
+class Page:
+    """A lesson page: its python blocks in page order, plus anything wrong with it."""
+
+    path: str
+    blocks: list[Block] = field(default_factory=list)
+    timeout: float = DEFAULT_TIMEOUT
+    errors: list[ParseError] = field(default_factory=list)
+
+    @property
+    def runnable(self) -> list[Block]:
+        return [b for b in self.blocks if b.skip is None]
+
+    @property
+    def skipped(self) -> list[Block]:
+        return [b for b in self.blocks if b.skip is not None]
+
+
+def find_pages(root: Path) -> list[Path]:
+    """Every lesson page under `root/_pages`, sorted."""
+    return sorted((root / "_pages").rglob("*.md"))
+
+
+def display_path(path: Path, root: Path) -> str:
+    """Path relative to the repository root when inside it (what tracebacks show)."""
+    path = path.resolve()
+    try:
+        return path.relative_to(root.resolve()).as_posix()
+    except ValueError:
+        return str(path)
+
+
+def split_front_matter(lines: list[str]) -> tuple[list[str], int]:
+    """Jekyll front matter lines and how many page lines it takes (0 if none)."""
+    if lines and lines[0].rstrip() == "---":
+        for i in range(1, len(lines)):
+            if lines[i].rstrip() in ("---", "..."):
+                return lines[1:i], i + 1
+    return [], 0
+
+
+def parse_page(path: Path, root: Path) -> Page:
+    """Read a page and collect its python blocks; mistakes go to `Page.errors`."""
+    page = Page(display_path(path, root))
+    lines = path.read_text(encoding="utf-8").split("\n")
+    front, body_start = split_front_matter(lines)
+    # Blank the front matter rather than cut it, so token line numbers stay page lines.
+    scan = _Scan(page, root, [""] * body_start + lines[body_start:])
+    scan.front_matter(front)
+    scan.fences()
+    scan.stray_attributes()
+    return page
+
+
+@dataclass
+class _Scan:
+    """State of one page's parse."""
+
+    page: Page
+    root: Path
+    body: list[str]  # page lines, front matter blanked
+    liquid: bool = True  # whether Jekyll runs Liquid over the page
+    code_lines: set[int] = field(default_factory=set)  # 0-based lines inside code
+    attached: set[int] = field(default_factory=set)  # 0-based attribute lines after a fence
+
+    def error(self, line: int, message: str) -> None:
+        self.page.errors.append(ParseError(self.page.path, line, message))
+
+    def front_matter(self, front: list[str]) -> None:
+        for line, text in enumerate(front, start=2):
+            text = text.strip()
+            if m := _TIMEOUT.match(text):
+                try:
+                    self.page.timeout = float(m["value"])
+                except ValueError:
+                    self.page.timeout = 0
+                if not self.page.timeout > 0:
+                    self.page.timeout = DEFAULT_TIMEOUT
+                    self.error(line, f"snippet_timeout must be a positive number of seconds, not {m['value']!r}")
+            elif _NO_LIQUID.match(text):
+                self.liquid = False
+
+    def fences(self) -> None:
+        raw = _raw_regions(self.body)
+        for token in MarkdownIt("commonmark").parse("\n".join(self.body)):
+            if token.type not in ("fence", "code_block") or token.map is None:
+                continue
+            start, end = token.map
+            self.code_lines.update(range(start, end))
+            if token.type != "fence":
+                continue
+            if end < len(self.body) and _IAL.match(self.body[end]):
+                self.attached.add(end)
+            info = token.info.strip()
+            if info != LANGUAGE:
+                if info and _PYTHON_LIKE.match(info.split()[0]):
+                    self.error(
+                        start + 1,
+                        f"fence info string {info!r} is not exactly 'python': the site would not "
+                        "show it as Python code and it would not run; write ```python and put any "
+                        "option on an attribute line right after the closing fence, e.g. "
+                        '{: data-skip="why it cannot run"}',
+                    )
+                continue
+            protected = any(a <= end - 1 and b >= start for a, b in raw)
+            block = self.block(token.content, start, end, protected)
+            if block is not None:
+                self.page.blocks.append(block)
+
+    def block(self, content: str, start: int, end: int, protected: bool) -> Block | None:
+        """The Block of a python fence over 0-based lines [start, end), or None on error."""
+        line = start + 2  # 1-based line of the first code line
+        skip = None
+        if end < len(self.body) and (m := _IAL.match(self.body[end])) and "data-skip" in m["body"]:
+            s = _SKIP.search(m["body"])
+            reason = (s["dq"] if s["dq"] is not None else s["sq"]) if s else None
+            if reason is None or not reason.strip():
+                self.error(end + 1, 'data-skip needs a non-empty quoted reason: {: data-skip="why"}')
+                return None
+            skip = reason.strip()
+
+        # Liquid runs before Markdown on the site: the reader sees code without raw tags.
+        code = _RAW_TAG.sub("", content)
+        if m := _INCLUDE.match(code.strip()):
+            return self.include(m["args"], line, skip)
+        if "include_code" in code and "{%" in code:
+            self.error(line, "{% include_code ... %} must be the only content of its ```python fence")
+            return None
+        if self.liquid and not protected and ("{{" in code or "{%" in code):
+            self.error(
+                line,
+                "Liquid would rewrite '{{' or '{%' in this block on the site; wrap the fence in "
+                "{% raw %} ... {% endraw %} (or set render_with_liquid: false in the front matter)",
+            )
+            return None
+        return Block(self.page.path, line, code, skip)
+
+    def include(self, args: str, line: int, skip: str | None) -> Block | None:
+        """The Block running the file an `{% include_code %}` fence shows."""
+        a = _INCLUDE_ARGS.match(args)
+        if a is None:
+            self.error(line, f"include_code expects `path [indent=N]`, got {args!r}")
+            return None
+        path = a["dq"] or a["sq"] or a["bare"]
+        if path.startswith(("/", "~")) or ".." in re.split(r"[/\\]", path):
+            self.error(line, f"include_code: {path} must be relative to the repository root, without '..'")
+            return None
+        target = self.root / path
+        if not target.is_file():
+            self.error(line, f"include_code: no file {path} (paths are relative to the repository root)")
+            return None
+        return Block(self.page.path, line, target.read_text(encoding="utf-8"), skip, path)
+
+    def stray_attributes(self) -> None:
+        """A data-skip line kramdown would not attach to a fence hides nothing: say so."""
+        for i, text in enumerate(self.body):
+            if i in self.attached or i in self.code_lines:
+                continue
+            if (m := _IAL.match(text)) and "data-skip" in m["body"]:
+                self.error(
+                    i + 1,
+                    "data-skip attribute is not on the line right after a closing ``` fence "
+                    "(kramdown would attach it to another element); move it there",
+                )
+
+
+def _raw_regions(lines: list[str]) -> list[tuple[int, int]]:
+    """0-based line spans between `{% raw %}` and `{% endraw %}`."""
+    regions: list[tuple[int, int]] = []
+    opened: int | None = None
+    for i, text in enumerate(lines):
+        for m in _RAW_TAG.finditer(text):
+            if m["end"] is None and opened is None:
+                opened = i
+            elif m["end"] is not None and opened is not None:
+                regions.append((opened, i))
+                opened = None
+    if opened is not None:
+        regions.append((opened, len(lines)))
+    return regions

@@ -1,0 +1,4 @@
+"""An included script that fails at its fourth line."""
+
+setting = None
+raise RuntimeError(f"setting is {setting}")
