@@ -61,9 +61,14 @@ assets/vendor/.done: $(STAMPS)/npm tools/copy-vendor.sh
 media: setup
 	$(PY) -m sw2sim.media
 
+# Bundler resolves the Gemfile against the Debian gems only (--local: no gem index is
+# reachable); `bundle check` makes it a no-op once Gemfile.lock matches.
 build: setup media assets/vendor/.done
+	@BUNDLE_SILENCE_ROOT_WARNING=1 bundle check >/dev/null 2>&1 || \
+	    BUNDLE_SILENCE_ROOT_WARNING=1 bundle install --local --quiet
 	bundle exec jekyll build --quiet
 
+# Serves the _site that `build` just wrote, as it is: no rebuild, no file watching.
 serve: build
 	@echo "Serving at http://$(HOST):$(PORT) (Ctrl-C to stop)"
 	bundle exec jekyll serve --skip-initial-build --no-watch --host $(HOST) --port $(PORT)

@@ -1,0 +1,79 @@
+# frozen_string_literal: true
+
+# Gives every highlighted code block a header line, built into the HTML so it shows
+# without scripts:
+#
+#   - the language (`python`, `bash`, ...), or the file the block shows when the block
+#     carries `data-file` (a link when the file is published, e.g. under examples/);
+#   - a "Not run here: <reason>" badge when the block carries `data-skip`.
+#
+# Both attributes come from a kramdown attribute line right after the closing fence:
+#
+#     ```python
+#     import rospy
+#     ```
+#     {: data-skip="needs a ROS master and Gazebo"}
+#
+# (An info string such as ```` ```python skip ```` is not a fence for kramdown: it would
+# print as text.) assets/js/site.js adds the copy button to the header.
+require "cgi/escape"
+
+module Sw2simSite
+  module CodeBlocks
+    # kramdown writes `<div class="language-x highlighter-rouge" ...>` with attribute-line
+    # attributes in any order, followed by rouge's `<div class="highlight">`.
+    BLOCK_OPEN = %r{<div\b([^>]*\bclass="[^"]*\bhighlighter-rouge\b[^"]*"[^>]*)>(\s*<div class="highlight">)}.freeze
+    ATTRIBUTE = /([\w:-]+)="([^"]*)"/.freeze
+    # A long line scrolls inside its block; a keyboard user can only scroll a box that
+    # can take focus.
+    PRE_OPEN = '<pre class="highlight">'
+    PRE_FOCUSABLE = '<pre class="highlight" tabindex="0">'
+
+    module_function
+
+    def decorate(html, site)
+      html.gsub(BLOCK_OPEN) do
+        attrs_text = Regexp.last_match(1)
+        inner_open = Regexp.last_match(2)
+        attrs = attrs_text.scan(ATTRIBUTE).to_h
+        "<div#{attrs_text}>#{header(attrs, site)}#{skip_badge(attrs)}#{inner_open}"
+      end.gsub(PRE_OPEN, PRE_FOCUSABLE)
+    end
+
+    # Attribute values arrive HTML-escaped from kramdown and are written back as they are.
+    def header(attrs, site)
+      title = if attrs.key?("data-file")
+                file_label(attrs["data-file"], site)
+              else
+                language = attrs["class"][/\blanguage-([\w+#.-]+)/, 1] || "text"
+                language = "text" if language == "plaintext"
+                %(<span class="code-lang">#{language}</span>)
+              end
+      %(<div class="code-header">#{title}</div>)
+    end
+
+    def file_label(path, site)
+      published = Array(site.config["verbatim_dirs"]).any? { |dir| path.start_with?("#{dir}/") } &&
+                  File.file?(File.join(site.source, CGI.unescapeHTML(path)))
+      label = %(<code class="code-file">#{path}</code>)
+      return label unless published
+
+      href = "#{site.baseurl.to_s.chomp("/")}/#{path}"
+      %(<a class="code-file-link" href="#{href}" title="Open the whole file">#{label}</a>)
+    end
+
+    def skip_badge(attrs)
+      return "" unless attrs.key?("data-skip")
+
+      reason = attrs["data-skip"].strip
+      detail = reason.empty? ? "" : " #{reason}"
+      %(<div class="code-skip"><strong>Not run here:</strong>#{detail}</div>)
+    end
+  end
+end
+
+Jekyll::Hooks.register [:pages, :documents], :post_convert do |page|
+  next unless page.output_ext == ".html"
+
+  page.content = Sw2simSite::CodeBlocks.decorate(page.content, page.site)
+end

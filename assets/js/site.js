@@ -1,0 +1,196 @@
+// Behaviour of every page: the phone menu, copy buttons on code blocks, heading links
+// and the image lightbox. Everything here improves a page that already works without
+// scripts: navigation, tables of contents, badges and captions are in the HTML.
+(function () {
+  "use strict";
+
+  // ---- Phone menu: the button in the header shows and hides the sidebar. ----------
+  function setUpMenu() {
+    var button = document.querySelector(".nav-toggle");
+    var sidebar = document.getElementById("sidebar");
+    if (!button || !sidebar) return;
+
+    function setOpen(open) {
+      button.setAttribute("aria-expanded", open ? "true" : "false");
+      document.body.classList.toggle("nav-open", open);
+    }
+
+    button.addEventListener("click", function () {
+      setOpen(button.getAttribute("aria-expanded") !== "true");
+    });
+    // Escape closes the menu and gives focus back to its button.
+    document.addEventListener("keydown", function (event) {
+      if (event.key === "Escape" && document.body.classList.contains("nav-open")) {
+        setOpen(false);
+        button.focus();
+      }
+    });
+    // Following a link in the menu closes it (matters for links within the page), and
+    // so does a tap on the dimmed page beside it.
+    document.addEventListener("click", function (event) {
+      if (!document.body.classList.contains("nav-open")) return;
+      var inSidebar = sidebar.contains(event.target);
+      if ((inSidebar && event.target.closest("a")) ||
+          (!inSidebar && !button.contains(event.target))) {
+        setOpen(false);
+      }
+    });
+  }
+
+  // ---- Copy buttons -------------------------------------------------------------
+  // navigator.clipboard exists only in secure contexts (https, localhost); a site served
+  // on a LAN address over http falls back to a hidden textarea and execCommand.
+  function copyText(text) {
+    if (navigator.clipboard && window.isSecureContext) {
+      return navigator.clipboard.writeText(text);
+    }
+    return new Promise(function (resolve, reject) {
+      var area = document.createElement("textarea");
+      area.value = text;
+      area.setAttribute("readonly", "");
+      area.style.position = "fixed";
+      area.style.top = "-1000px";
+      document.body.appendChild(area);
+      area.select();
+      var ok = false;
+      try {
+        ok = document.execCommand("copy");
+      } catch (error) {
+        ok = false;
+      }
+      document.body.removeChild(area);
+      if (ok) resolve();
+      else reject(new Error("copy refused"));
+    });
+  }
+
+  function addCopyButtons() {
+    var blocks = document.querySelectorAll(".page-body pre");
+    Array.prototype.forEach.call(blocks, function (pre) {
+      // kramdown blocks carry a header from _plugins/code_blocks.rb; other <pre>
+      // (raw HTML, {% highlight %}) get an empty one here.
+      var block = pre.closest(".highlighter-rouge, figure.highlight") || pre;
+      var header = block.querySelector(".code-header");
+      if (!header) {
+        header = document.createElement("div");
+        header.className = "code-header";
+        if (block === pre) pre.parentNode.insertBefore(header, pre);
+        else block.insertBefore(header, block.firstChild);
+      }
+
+      var button = document.createElement("button");
+      button.type = "button";
+      button.className = "copy-button";
+      button.textContent = "Copy";
+      button.setAttribute("aria-label", "Copy code");
+      // Announces the result to screen readers without moving focus.
+      var status = document.createElement("span");
+      status.className = "visually-hidden";
+      status.setAttribute("role", "status");
+
+      var timer = null;
+      button.addEventListener("click", function () {
+        var code = pre.querySelector("code") || pre;
+        copyText(code.textContent.replace(/\n$/, "")).then(
+          function () { show("Copied"); },
+          function () { show("Press Ctrl+C"); selectText(code); }
+        );
+      });
+      function show(message) {
+        button.textContent = message;
+        status.textContent = message === "Copied" ? "Code copied" : "Copy failed: select and copy by hand";
+        clearTimeout(timer);
+        timer = setTimeout(function () {
+          button.textContent = "Copy";
+          status.textContent = "";
+        }, 2000);
+      }
+      header.appendChild(button);
+      header.appendChild(status);
+    });
+  }
+
+  function selectText(node) {
+    var range = document.createRange();
+    range.selectNodeContents(node);
+    var selection = window.getSelection();
+    selection.removeAllRanges();
+    selection.addRange(range);
+  }
+
+  // ---- Heading links: a "#" after each h2-h4 to copy a link to that section. -------
+  function addHeadingLinks() {
+    var headings = document.querySelectorAll(".page-body h2[id], .page-body h3[id], .page-body h4[id]");
+    Array.prototype.forEach.call(headings, function (heading) {
+      var link = document.createElement("a");
+      link.className = "heading-link";
+      link.href = "#" + heading.id;
+      link.setAttribute("aria-label", "Link to this section: " + heading.textContent);
+      link.textContent = "#";
+      heading.appendChild(link);
+    });
+  }
+
+  // ---- Lightbox: an image in the page body opens full size in a modal dialog. -------
+  // <dialog> gives focus trapping, Escape to close and the backdrop for free; the image
+  // is wrapped in a button so it can be reached and opened with the keyboard.
+  function setUpLightbox() {
+    var images = document.querySelectorAll(".page-body img");
+    if (!images.length || typeof HTMLDialogElement !== "function") return;
+
+    var dialog = document.createElement("dialog");
+    dialog.className = "lightbox";
+    dialog.setAttribute("aria-label", "Enlarged image");
+    var big = document.createElement("img");
+    big.className = "lightbox-image";
+    big.alt = "";
+    var close = document.createElement("button");
+    close.type = "button";
+    close.className = "lightbox-close";
+    close.textContent = "Close";
+    dialog.appendChild(close);
+    dialog.appendChild(big);
+    document.body.appendChild(dialog);
+
+    var opener = null;
+    close.addEventListener("click", function () { dialog.close(); });
+    // A click anywhere (image or backdrop) closes, as on most image viewers.
+    dialog.addEventListener("click", function (event) {
+      if (event.target !== close) dialog.close();
+    });
+    dialog.addEventListener("close", function () {
+      document.body.classList.remove("lightbox-open");
+      big.removeAttribute("src");
+      if (opener) opener.focus();
+    });
+
+    Array.prototype.forEach.call(images, function (image) {
+      if (image.closest("a, button")) return; // already a link: leave it one
+      var button = document.createElement("button");
+      button.type = "button";
+      button.className = "zoom-button";
+      var what = image.getAttribute("alt");
+      button.setAttribute("aria-label", "Enlarge image" + (what ? ": " + what : ""));
+      image.parentNode.insertBefore(button, image);
+      button.appendChild(image);
+      button.addEventListener("click", function () {
+        opener = button;
+        big.src = image.currentSrc || image.src;
+        big.alt = image.getAttribute("alt") || "";
+        document.body.classList.add("lightbox-open");
+        dialog.showModal();
+        close.focus();
+      });
+    });
+  }
+
+  function start() {
+    setUpMenu();
+    addCopyButtons();
+    addHeadingLinks();
+    setUpLightbox();
+  }
+
+  if (document.readyState === "loading") document.addEventListener("DOMContentLoaded", start);
+  else start();
+})();
