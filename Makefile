@@ -12,7 +12,7 @@ HOST    ?= 127.0.0.1
 PORT    ?= 4000
 
 # Debian packages the site, the renderer and the URDF checks need.
-APT_PACKAGES := jekyll ruby-jekyll-feed ruby-jekyll-seo-tag ruby-jekyll-sitemap bundler \
+APT_PACKAGES := jekyll ruby-jekyll-seo-tag ruby-jekyll-sitemap bundler \
                 ruby-kramdown-parser-gfm ruby-webrick libosmesa6 liburdfdom-tools
 
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)

@@ -91,16 +91,17 @@ def base() -> Part:
         material=ALUMINIUM,
         features=features,
         dimensions=[
-            Dimension("top", mm(-lx / 2, -ly / 2, 0), mm(lx / 2, -ly / 2, 0), "h", -0.26),
-            Dimension("top", mm(-AXLE_X, 0, 0), mm(AXLE_X, 0, 0), "h", 0.26),
+            Dimension("top", mm(-lx / 2, -ARM_END_Y, 0), mm(lx / 2, -ARM_END_Y, 0), "h", -0.07),
+            Dimension("top", mm(-AXLE_X, end, 0), mm(AXLE_X, end, 0), "h", 0.06),
             Dimension("top", mm(AXLE_X - ax / 2, ARM_END_Y, 0), mm(AXLE_X + ax / 2, ARM_END_Y, 0), "h", 0.08),
             Dimension("top", mm(lx / 2, -ly / 2, 0), mm(lx / 2, ly / 2, 0), "v", 0.05),
             Dimension("top", mm(-lx / 2, ly / 2, 0), mm(-lx / 2, ARM_END_Y, 0), "v", -0.05),
             Dimension("top", mm(-lx / 2, ARM_END_Y, 0), mm(-lx / 2, end, 0), "v", -0.05),
-            Dimension("top", mm(-AXLE_X, -end, 0), mm(-AXLE_X, end, 0), "v", -0.13),
+            Dimension("top", mm(-AXLE_X - AXLE_DIAMETER / 2, -end, 0),
+                      mm(-AXLE_X - AXLE_DIAMETER / 2, end, 0), "v", -0.12),
             Dimension("front", mm(lx / 2, 0, -lz / 2), mm(lx / 2, 0, lz / 2), "v", 0.04),
-            Dimension("side", mm(0, end - AXLE_LENGTH / 2, -AXLE_DIAMETER / 2),
-                      mm(0, end - AXLE_LENGTH / 2, AXLE_DIAMETER / 2), "v", 0.04, f"Ø{AXLE_DIAMETER}"),
+            Dimension("side", mm(0, end, -AXLE_DIAMETER / 2), mm(0, end, AXLE_DIAMETER / 2), "v", 0.015,
+                      f"Ø{AXLE_DIAMETER}"),
         ],
     )
 
