@@ -51,16 +51,16 @@ def axes_picture(path: Path) -> None:
                     show_joints=True, shadows=False), path)
 
 
-def free_base_run(duration: float, frames=()):
-    """Drive the wheels with the pulse script while the base is free; return (t, x, pictures)."""
-    model = load_package(PACKAGE, fixed_base=False).compile()
+def base_run(fixed_base: bool, duration: float, frames=()):
+    """Push the wheels with the pulse script; return (t, distance the base moved, pictures at `frames`)."""
+    model = load_package(PACKAGE, fixed_base=fixed_base).compile()
     data = mujoco.MjData(model)
     node = pulses()
     base = model.body("base_link").id
     dofs = [model.joint(j).dofadr[0] for j in WHEEL_JOINTS]
-    times, xs, pictures = [], [], []
     mujoco.mj_forward(model, data)
     start = data.xpos[base].copy()
+    times, moved, pictures = [], [], []
     pending = sorted(frames)
     while data.time < duration:
         data.qfrc_applied[dofs] = node.wheel_torque(data.time)
@@ -69,31 +69,14 @@ def free_base_run(duration: float, frames=()):
             pictures.append(render(model, data, width=640, height=360, lookat=[0.75, 0, 0.12],
                                    distance=1.9, azimuth=90, elevation=-8))
         times.append(data.time)
-        xs.append(np.linalg.norm(data.xpos[base][:2] - start[:2]))
+        moved.append(np.linalg.norm(data.xpos[base] - start))
         mujoco.mj_step(model, data)
-    return np.array(times), np.array(xs), pictures
-
-
-def locked_base_run(duration: float):
-    model = load_package(PACKAGE).compile()
-    data = mujoco.MjData(model)
-    node = pulses()
-    base = model.body("base_link").id
-    mujoco.mj_forward(model, data)
-    start = data.xpos[base].copy()
-    dofs = [model.joint(j).dofadr[0] for j in WHEEL_JOINTS]
-    times, xs = [], []
-    while data.time < duration:
-        data.qfrc_applied[dofs] = node.wheel_torque(data.time)
-        times.append(data.time)
-        xs.append(np.linalg.norm(data.xpos[base] - start))
-        mujoco.mj_step(model, data)
-    return np.array(times), np.array(xs)
+    return np.array(times), np.array(moved), pictures
 
 
 def unlocked_strip(path: Path) -> None:
     moments = [0.0, 0.5, 1.0, 1.5]
-    _, _, pictures = free_base_run(max(moments) + 0.01, frames=moments)
+    _, _, pictures = base_run(False, max(moments) + 0.01, frames=moments)
     fig, axes = figure(1, len(pictures), figsize=(12, 2.4))
     for ax, pic, t in zip(axes, pictures, moments):
         ax.imshow(pic)
@@ -104,8 +87,8 @@ def unlocked_strip(path: Path) -> None:
 
 def base_drift(path: Path) -> None:
     duration = 3.0
-    t_free, x_free, _ = free_base_run(duration)
-    t_locked, x_locked = locked_base_run(duration)
+    t_free, x_free, _ = base_run(False, duration)
+    t_locked, x_locked, _ = base_run(True, duration)
     fig, ax = figure()
     ax.axvspan(0, 1, color="0.5", alpha=0.15, label="1 N·m on each wheel")
     ax.plot(t_free, x_free, label="base free (no world joint)")
