@@ -114,7 +114,7 @@ def test_conversions_on_the_exporting_page():
     assert f'lower="-{math.radians(45):.4f}" upper="{math.radians(45):.4f}"' in text
     assert f"= {2 * math.pi / 60 * 600:.2f}" in text
     radius = design.WHEEL_DIAMETER / 2000
-    assert f"$r$ = {radius:g} m" in text and f"= {1.0 / radius:g} rad/s" in text
+    assert f"$$r$$ = {radius:g} m" in text and f"= {1.0 / radius:g} rad/s" in text
 
 
 def test_stand_height_on_the_modifying_page():

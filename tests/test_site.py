@@ -226,6 +226,16 @@ def test_skip_badges_on_real_pages(site, sources):
         assert badges == marked, f"{path}: {marked} blocks marked data-skip, {badges} badges shown"
 
 
+def test_no_unrendered_dollar_math(site, sources):
+    """kramdown reads math only between $$ and $$; a single $ stays on the page as text."""
+    problems = []
+    for page in sorted(site.rglob("*.html")):
+        text = re.sub(r"<(pre|code|script)\b.*?</\1>", "", page.read_text(), flags=re.S)
+        for m in re.finditer(r"\$\S[^$\n]{0,60}?\$", text):
+            problems.append(f"{page.relative_to(site)}: ...{text[max(0, m.start() - 30):m.end() + 10]}...")
+    assert not problems, "write inline math as $$...$$:\n" + "\n".join(problems)
+
+
 def test_images_load_lazily(site):
     eager = [f"{page.relative_to(site)}: {tag}" for page in site.rglob("*.html")
              for tag in re.findall(r"<img\b[^>]*>", page.read_text(encoding="utf-8"))
