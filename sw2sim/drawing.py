@@ -206,19 +206,23 @@ class _Arc:
                 f'{fmt(x1)} {fmt(y1)}"{extra}/>')
 
 
-@dataclass(frozen=True)
-class _Poly:
-    """A polyline or closed polygon (rings: the first outer, the rest holes when filled)."""
-
-    rings: tuple
-    closed: bool = False
-    style: str = "visible"
+class _Rings:
+    """Shared by shapes made of point rings: shift them, list their points."""
 
     def moved(self, dx, dy):
         return replace(self, rings=tuple(tuple((x + dx, y + dy) for x, y in r) for r in self.rings))
 
     def points(self):
         return [p for r in self.rings for p in r]
+
+
+@dataclass(frozen=True)
+class _Poly(_Rings):
+    """A polyline or closed polygon (rings: the first outer, the rest holes when filled)."""
+
+    rings: tuple
+    closed: bool = False
+    style: str = "visible"
 
     def svg(self):
         parts = []
@@ -271,18 +275,12 @@ class _Text:
 
 
 @dataclass(frozen=True)
-class _Fill:
+class _Fill(_Rings):
     """A filled region drawn before the lines of its layer (white for assembly occlusion)."""
 
     rings: tuple
     colour: str = "#fff"
     style: str = "fill"
-
-    def moved(self, dx, dy):
-        return replace(self, rings=tuple(tuple((x + dx, y + dy) for x, y in r) for r in self.rings))
-
-    def points(self):
-        return [p for r in self.rings for p in r]
 
     def svg(self):
         d = "".join("M" + "L".join(f"{fmt(x)} {fmt(y)}" for x, y in r) + "Z" for r in self.rings)

@@ -15,8 +15,6 @@ import io
 from dataclasses import dataclass, field
 from pathlib import Path
 
-import numpy as np
-
 from .parts import Part
 
 EXPORTER_GREY = (0.792156862745098, 0.819607843137255, 0.933333333333333, 1.0)
@@ -87,9 +85,6 @@ class Robot:
     added_joints: list[Joint] = field(default_factory=list)
     colours: dict[str, tuple[float, float, float, float]] = field(default_factory=dict)
     dynamics: dict[str, Dynamics] = field(default_factory=dict)
-
-    def link(self, name: str) -> Link:
-        return next(lk for lk in self.links if lk.name == name)
 
     def movable_joints(self) -> list[Joint]:
         return [j for j in self.joints if j.type != "fixed"]
@@ -372,6 +367,3 @@ def stl_bytes(part: Part) -> bytes:
     header = f"{part.name} - binary STL, metres".encode()[:80].ljust(80, b" ")
     return header + data[80:]
 
-
-def inertia_matrix(ixx, ixy, ixz, iyy, iyz, izz) -> np.ndarray:
-    return np.array([[ixx, ixy, ixz], [ixy, iyy, iyz], [ixz, iyz, izz]], dtype=float)

@@ -16,9 +16,6 @@ from functools import cached_property
 import numpy as np
 import trimesh
 
-AXES = {"x": 0, "y": 1, "z": 2}
-
-
 @dataclass(frozen=True)
 class Material:
     name: str
