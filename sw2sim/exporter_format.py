@@ -52,6 +52,33 @@ class Dynamics:
     friction: float = 0.0
 
 
+@dataclass(frozen=True)
+class Safety:
+    """The exporter's "Safety" fields: soft limits and the gains that hold a joint inside them."""
+
+    soft_lower: float = 0.0
+    soft_upper: float = 0.0
+    k_position: float = 0.0
+    k_velocity: float = 0.0
+
+
+@dataclass(frozen=True)
+class Transmission:
+    """A ros_control transmission: one actuator driving one joint (added by hand after the export)."""
+
+    joint: str
+    interface: str = "hardware_interface/EffortJointInterface"
+    reduction: float = 1.0
+
+    @property
+    def name(self) -> str:
+        return self.joint.removesuffix("_joint") + "_transmission"
+
+    @property
+    def actuator(self) -> str:
+        return self.joint.removesuffix("_joint") + "_motor"
+
+
 @dataclass
 class Link:
     name: str
@@ -71,6 +98,7 @@ class Joint:
     axis: tuple[float, float, float] | None = None
     limit: Limit | None = None
     dynamics: Dynamics | None = None
+    safety: Safety | None = None
     coordinate_system: str = ""
     axis_name: str = ""
 
@@ -85,6 +113,9 @@ class Robot:
     added_joints: list[Joint] = field(default_factory=list)
     colours: dict[str, tuple[float, float, float, float]] = field(default_factory=dict)
     dynamics: dict[str, Dynamics] = field(default_factory=dict)
+    transmissions: list[Transmission] = field(default_factory=list)
+    gazebo_plugin: str = ""       # e.g. "libgazebo_ros_control.so", loaded with namespace /<name>
+    depends: list[str] = field(default_factory=list)   # extra <depend> lines in package.xml
 
     def movable_joints(self) -> list[Joint]:
         return [j for j in self.joints if j.type != "fixed"]
@@ -135,6 +166,8 @@ def urdf_text(robot: Robot, *, as_exported: bool = False) -> str:
         _write_link(w, robot, link, as_exported)
         if link.name in joints_by_child:
             _write_joint(w, robot, joints_by_child[link.name], as_exported)
+    if not as_exported:
+        _write_ros_control(w, robot)
     w.close(0, "robot")
     return HEADER + "\n".join(w.lines) + "\n"
 
@@ -183,7 +216,36 @@ def _write_joint(w: _Writer, robot: Robot, joint: Joint, as_exported: bool) -> N
     dyn = joint.dynamics if as_exported else robot.dynamics.get(joint.name, joint.dynamics)
     if dyn is not None:
         w.leaf(2, "dynamics", {"damping": g5(dyn.damping), "friction": g5(dyn.friction)})
+    if joint.safety is not None:
+        s = joint.safety
+        w.leaf(2, "safety_controller", {"soft_lower_limit": g5(s.soft_lower), "soft_upper_limit": g5(s.soft_upper),
+                                        "k_position": g5(s.k_position), "k_velocity": g5(s.k_velocity)})
     w.close(1, "joint")
+
+
+def _write_ros_control(w: _Writer, robot: Robot) -> None:
+    """Transmissions and the Gazebo plugin: added by hand, in the usual compact ROS style."""
+    for t in robot.transmissions:
+        w.lines += [
+            f'  <transmission name="{t.name}">',
+            "    <type>transmission_interface/SimpleTransmission</type>",
+            f'    <joint name="{t.joint}">',
+            f"      <hardwareInterface>{t.interface}</hardwareInterface>",
+            "    </joint>",
+            f'    <actuator name="{t.actuator}">',
+            f"      <hardwareInterface>{t.interface}</hardwareInterface>",
+            f"      <mechanicalReduction>{g5(t.reduction)}</mechanicalReduction>",
+            "    </actuator>",
+            "  </transmission>",
+        ]
+    if robot.gazebo_plugin:
+        w.lines += [
+            "  <gazebo>",
+            f'    <plugin name="gazebo_ros_control" filename="{robot.gazebo_plugin}">',
+            f"      <robotNamespace>/{robot.name}</robotNamespace>",
+            "    </plugin>",
+            "  </gazebo>",
+        ]
 
 
 # --- the other files of the package ----------------------------------------------------------
@@ -228,13 +290,16 @@ def csv_text(robot: Robot) -> str:
             row += [g15(lim.effort), g15(lim.velocity), g15(lim.lower), g15(lim.upper)] if lim else ["", "", "", ""]
             row += ["", ""]
             row += [g15(j.dynamics.damping), g15(j.dynamics.friction)] if j.dynamics else ["", ""]
-            row += ["", "", "", ""]
+            sf = j.safety
+            row += [g15(sf.soft_upper), g15(sf.soft_lower), g15(sf.k_position), g15(sf.k_velocity)] if sf \
+                else ["", "", "", ""]
         row[-1] = row[-1] if row[-1] != "" else 0  # the exporter ends each row with 0
         wr.writerow(row)
     return out.getvalue()
 
 
-def package_xml(name: str) -> str:
+def package_xml(name: str, depends: list[str] = ()) -> str:
+    extra = "".join(f"\n  <depend>{d}</depend>" for d in depends)
     return f"""<?xml version="1.0"?>
 <package format="2">
   <name>{name}</name>
@@ -252,7 +317,7 @@ for {name} robot</p>
   <depend>robot_state_publisher</depend>
   <depend>rviz</depend>
   <depend>joint_state_publisher_gui</depend>
-  <depend>gazebo</depend>
+  <depend>gazebo</depend>{extra}
   <export>
     <architecture_independent />
   </export>
@@ -331,17 +396,19 @@ def gazebo_launch(name: str, extra_nodes: str = "") -> str:
 """
 
 
-def write_package(robot: Robot, folder: Path, *, gazebo_nodes: str = "") -> list[Path]:
+def write_package(robot: Robot, folder: Path, *, gazebo_nodes: str = "", config: str = "") -> list[Path]:
     """Write the whole package into `folder` (created if needed); return the files written.
 
-    Generated files are overwritten; anything else in the folder (scripts/, README) is left alone.
+    `gazebo_nodes` is added to launch/gazebo.launch and `config` replaces the joint-names YAML
+    (both are what a lesson changes by hand). Generated files are overwritten; anything else
+    in the folder (scripts/, README) is left alone.
     """
     folder = Path(folder)
     name = robot.name
     files: dict[str, str | bytes] = {
         "CMakeLists.txt": cmakelists(name),
-        "package.xml": package_xml(name),
-        f"config/joint_names_{name}.yaml": joint_names_yaml(robot),
+        "package.xml": package_xml(name, robot.depends),
+        f"config/joint_names_{name}.yaml": config or joint_names_yaml(robot),
         "launch/display.launch": display_launch(name),
         "launch/gazebo.launch": gazebo_launch(name, gazebo_nodes),
         f"urdf/{name}.urdf": urdf_text(robot),
