@@ -1,0 +1,143 @@
+"""Practice 3, MuJoCo version: effort-based joint position controllers, set up like ROS's.
+
+In Gazebo, gazebo_ros_control and effort_controllers/JointPositionController do this
+work; here the script does it, reading the same files:
+- the PID gains and the joint-state rate from config/joint_names_example_3.yaml;
+- one motor per <transmission> in the URDF, its torque clipped at the joint's effort limit;
+- the velocity limit and the <safety_controller> gains from the URDF, which MuJoCo's
+  importer drops, enforced the way ros_control's joint_limits_interface does it.
+
+Run it from the repository root:  python examples/example_3/scripts/arm_controller.py
+"""
+
+from pathlib import Path
+
+import mujoco
+import numpy as np
+
+import sw2sim
+from sw2sim.ros_control import add_motors, read_controllers, read_joint_limits
+
+PACKAGE = Path(__file__).resolve().parents[1]
+CONFIG = PACKAGE / "config" / "joint_names_example_3.yaml"
+TIMESTEP = 0.001   # s: Gazebo's default physics step; the controllers run at every step, as in Gazebo
+
+
+class Pid:
+    """A PID on the position error. The integral term is clamped to ±i_clamp, as in ROS's control_toolbox."""
+
+    def __init__(self, p, i=0.0, d=0.0, i_clamp=0.0):
+        self.p, self.i, self.d, self.i_clamp = p, i, d, i_clamp
+        self.integral = 0.0
+
+    def __call__(self, error, error_rate, dt):
+        self.integral = np.clip(self.integral + self.i * error * dt, -self.i_clamp, self.i_clamp)
+        return self.p * error + self.integral + self.d * error_rate
+
+
+class JointPositionController:
+    """Turns a position setpoint into a joint torque, within the joint's limits."""
+
+    def __init__(self, model, joint, gains, limits):
+        self.joint = joint
+        self.qpos = model.joint(joint).qposadr[0]
+        self.dof = model.joint(joint).dofadr[0]
+        self.pid = Pid(**gains)
+        self.limits = limits
+        self.setpoint = 0.0
+        self.reference = None   # where the joint is being led: moves to the setpoint at the velocity limit
+
+    def command(self, position):
+        """A new setpoint, kept inside the joint's limits (the ROS controller does the same)."""
+        self.setpoint = float(np.clip(position, self.limits.lower, self.limits.upper))
+
+    def effort(self, data, dt):
+        q, v = data.qpos[self.qpos], data.qvel[self.dof]
+        if self.reference is None:
+            self.reference = q
+        step = self.limits.velocity * dt
+        self.reference += np.clip(self.setpoint - self.reference, -step, step)
+        # Derivative term on the velocity error (target velocity 0), as the ROS controller does.
+        torque = self.pid(self.reference - q, -v, dt)
+        return self.enforce_limits(torque, q, v)
+
+    def enforce_limits(self, torque, q, v):
+        """Clip the torque so the joint stays under its velocity limit and inside its soft limits.
+
+        Near the velocity limit, the torque allowed in the direction of motion falls to zero;
+        above it, the torque must slow the joint down. Near a soft position limit, the speed
+        allowed towards it shrinks in proportion to the distance left (k_position).
+        """
+        lim = self.limits
+        v_min, v_max = -lim.velocity, lim.velocity
+        if lim.has_soft_limits:
+            v_min = np.clip(-lim.k_position * (q - lim.soft_lower), -lim.velocity, lim.velocity)
+            v_max = np.clip(-lim.k_position * (q - lim.soft_upper), -lim.velocity, lim.velocity)
+        low = np.clip(-lim.k_velocity * (v - v_min), -lim.effort, lim.effort)
+        high = np.clip(-lim.k_velocity * (v - v_max), -lim.effort, lim.effort)
+        return float(np.clip(torque, low, high))
+
+
+class Arm:
+    """The arm in MuJoCo with its two position controllers and a joint-state log at the YAML's rate."""
+
+    def __init__(self, package=PACKAGE, config=CONFIG):
+        spec = sw2sim.load_package(package)
+        spec.option.timestep = TIMESTEP
+        motors = add_motors(spec, package)
+        self.model = spec.compile()
+        self.data = mujoco.MjData(self.model)
+
+        limits = read_joint_limits(package)
+        settings = read_controllers(config)[self.model.names.split(b"\0")[0].decode()]
+        self.state_rate = settings["joint_state_controller"]["publish_rate"]
+        self.controllers = {
+            name: JointPositionController(self.model, c["joint"], c["pid"], limits[c["joint"]])
+            for name, c in settings.items() if c.get("type") == "effort_controllers/JointPositionController"
+        }
+        motor_of = {self.model.actuator(m).trnid[0]: i for i, m in enumerate(motors)}
+        self.motor = {name: motor_of[self.model.joint(c.joint).id] for name, c in self.controllers.items()}
+        self.log = []
+        self._every = max(1, round(1 / (self.state_rate * TIMESTEP)))
+        self._steps = 0
+
+    def command(self, **setpoints):
+        """Like publishing to <controller>/command: arm.command(middle_arm_controller=0.5)."""
+        for name, value in setpoints.items():
+            self.controllers[name].command(value)
+
+    def step(self):
+        if self._steps % self._every == 0:
+            self._record()
+        for name, controller in self.controllers.items():
+            self.data.ctrl[self.motor[name]] = controller.effort(self.data, TIMESTEP)
+        mujoco.mj_step(self.model, self.data)
+        self._steps += 1
+
+    def run(self, seconds):
+        for _ in range(round(seconds / TIMESTEP)):
+            self.step()
+
+    def _record(self):
+        row = {"time": self.data.time}
+        for name, c in self.controllers.items():
+            q = self.data.qpos[c.qpos]
+            row[name] = {"set_point": c.setpoint, "process_value": q,
+                         "process_value_dot": self.data.qvel[c.dof], "error": c.setpoint - q}
+        self.log.append(row)
+
+    def states(self, controller, field):
+        """One field of one controller's state over time, as an array (like `rostopic echo`)."""
+        return np.array([row[controller][field] for row in self.log])
+
+    def times(self):
+        return np.array([row["time"] for row in self.log])
+
+
+if __name__ == "__main__":
+    arm = Arm()
+    arm.command(middle_arm_controller=0.5, end_arm_controller=-0.7)
+    arm.run(2.0)
+    for name in arm.controllers:
+        print(f"{name:22} set point {arm.controllers[name].setpoint:+.4f} rad, "
+              f"position {arm.states(name, 'process_value')[-1]:+.4f} rad")
