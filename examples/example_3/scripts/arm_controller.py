@@ -18,9 +18,13 @@ import numpy as np
 import sw2sim
 from sw2sim.ros_control import add_motors, read_controllers, read_joint_limits
 
-PACKAGE = Path(__file__).resolve().parents[1]
+PACKAGE = Path("examples/example_3")        # run from the repository root
 CONFIG = PACKAGE / "config" / "joint_names_example_3.yaml"
 TIMESTEP = 0.001   # s: Gazebo's default physics step; the controllers run at every step, as in Gazebo
+# rad/s²: how quickly each joint is brought up to speed and slowed down again. The middle
+# joint is gentler: each change of its speed shakes the end arm it carries.
+ACCELERATION = {"middle_arm_joint": 5.0, "end_arm_joint": 10.0}
+CRUISE = 0.95         # lead each joint at 95 % of its velocity limit: room for the pushes of the other arm
 
 
 class Pid:
@@ -45,7 +49,8 @@ class JointPositionController:
         self.pid = Pid(**gains)
         self.limits = limits
         self.setpoint = 0.0
-        self.reference = None   # where the joint is being led: moves to the setpoint at the velocity limit
+        self.reference = None       # where the joint is led, on its way to the setpoint
+        self.reference_speed = 0.0
 
     def command(self, position):
         """A new setpoint, kept inside the joint's limits (the ROS controller does the same)."""
@@ -55,11 +60,23 @@ class JointPositionController:
         q, v = data.qpos[self.qpos], data.qvel[self.dof]
         if self.reference is None:
             self.reference = q
-        step = self.limits.velocity * dt
-        self.reference += np.clip(self.setpoint - self.reference, -step, step)
-        # Derivative term on the velocity error (target velocity 0), as the ROS controller does.
-        torque = self.pid(self.reference - q, -v, dt)
+        self.lead(dt)
+        torque = self.pid(self.reference - q, self.reference_speed - v, dt)
         return self.enforce_limits(torque, q, v)
+
+    def lead(self, dt):
+        """Move the reference towards the setpoint: speed up at ACCELERATION, cruise just under
+        the velocity limit, and slow down in time to stop on the setpoint."""
+        left = self.setpoint - self.reference
+        acceleration = ACCELERATION[self.joint]
+        can_stop_from = np.sqrt(2 * acceleration * abs(left))
+        wanted = np.sign(left) * min(CRUISE * self.limits.velocity, can_stop_from)
+        change = acceleration * dt
+        self.reference_speed += np.clip(wanted - self.reference_speed, -change, change)
+        if abs(left) <= abs(self.reference_speed) * dt:
+            self.reference, self.reference_speed = self.setpoint, 0.0
+        else:
+            self.reference += self.reference_speed * dt
 
     def enforce_limits(self, torque, q, v):
         """Clip the torque so the joint stays under its velocity limit and inside its soft limits.

@@ -6,11 +6,10 @@ PERIOD seconds, a rate of 1 / 5 s = 0.2 Hz. Run it from the repository root:
 """
 
 import sys
-from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
+sys.path.insert(0, "examples/example_3/scripts")   # run from the repository root
 from arm_controller import Arm  # noqa: E402  (the script next to this one)
 
 PERIOD = 5.0   # s between two new setpoints

@@ -90,16 +90,23 @@ def reach(path: Path) -> None:
     save(fig, path)
 
 
+def pid_alone(c):
+    """Make a controller a bare PID on the set point, as if the URDF had no velocity limit."""
+    def lead(dt):
+        c.reference, c.reference_speed = c.setpoint, 0.0
+    c.lead = lead
+    c.enforce_limits = lambda torque, q, v: torque
+
+
 def step_speeds(enforce: bool, seconds=1.5):
     """Both joints stepped from -45° to +45°; return time and joint speeds (every physics step)."""
     ctl = controller()
     arm = ctl.Arm()
     arm.command(middle_arm_controller=-design.LIMIT, end_arm_controller=-design.LIMIT)
     arm.run(1.5)
-    if not enforce:   # the PID alone, as if the URDF's velocity limit were not there
+    if not enforce:
         for c in arm.controllers.values():
-            c.enforce_limits = lambda torque, q, v: torque
-            c.limits = c.limits.__class__(**{**c.limits.__dict__, "velocity": np.inf})
+            pid_alone(c)
     arm.command(middle_arm_controller=design.LIMIT, end_arm_controller=design.LIMIT)
     t0, times, speeds = arm.data.time, [], []
     for _ in range(round(seconds / ctl.TIMESTEP)):
