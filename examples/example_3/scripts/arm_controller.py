@@ -10,6 +10,7 @@ work; here the script does it, reading the same files:
 Run it from the repository root:  python examples/example_3/scripts/arm_controller.py
 """
 
+import math
 from pathlib import Path
 
 import mujoco
@@ -27,6 +28,11 @@ ACCELERATION = {"middle_arm_joint": 5.0, "end_arm_joint": 10.0}
 CRUISE = 0.95         # lead each joint at 95 % of its velocity limit: room for the pushes of the other arm
 
 
+def clamp(value, low, high):
+    """`value` kept between `low` and `high` (plain Python: much faster than np.clip on one number)."""
+    return min(max(value, low), high)
+
+
 class Pid:
     """A PID on the position error. The integral term is clamped to ±i_clamp, as in ROS's control_toolbox."""
 
@@ -35,7 +41,7 @@ class Pid:
         self.integral = 0.0
 
     def __call__(self, error, error_rate, dt):
-        self.integral = np.clip(self.integral + self.i * error * dt, -self.i_clamp, self.i_clamp)
+        self.integral = clamp(self.integral + self.i * error * dt, -self.i_clamp, self.i_clamp)
         return self.p * error + self.integral + self.d * error_rate
 
 
@@ -54,10 +60,10 @@ class JointPositionController:
 
     def command(self, position):
         """A new setpoint, kept inside the joint's limits (the ROS controller does the same)."""
-        self.setpoint = float(np.clip(position, self.limits.lower, self.limits.upper))
+        self.setpoint = float(clamp(position, self.limits.lower, self.limits.upper))
 
     def effort(self, data, dt):
-        q, v = data.qpos[self.qpos], data.qvel[self.dof]
+        q, v = float(data.qpos[self.qpos]), float(data.qvel[self.dof])
         if self.reference is None:
             self.reference = q
         self.lead(dt)
@@ -69,10 +75,10 @@ class JointPositionController:
         the velocity limit, and slow down in time to stop on the setpoint."""
         left = self.setpoint - self.reference
         acceleration = ACCELERATION[self.joint]
-        can_stop_from = np.sqrt(2 * acceleration * abs(left))
-        wanted = np.sign(left) * min(CRUISE * self.limits.velocity, can_stop_from)
+        can_stop_from = math.sqrt(2 * acceleration * abs(left))
+        wanted = math.copysign(min(CRUISE * self.limits.velocity, can_stop_from), left)
         change = acceleration * dt
-        self.reference_speed += np.clip(wanted - self.reference_speed, -change, change)
+        self.reference_speed += clamp(wanted - self.reference_speed, -change, change)
         if abs(left) <= abs(self.reference_speed) * dt:
             self.reference, self.reference_speed = self.setpoint, 0.0
         else:
@@ -88,11 +94,11 @@ class JointPositionController:
         lim = self.limits
         v_min, v_max = -lim.velocity, lim.velocity
         if lim.has_soft_limits:
-            v_min = np.clip(-lim.k_position * (q - lim.soft_lower), -lim.velocity, lim.velocity)
-            v_max = np.clip(-lim.k_position * (q - lim.soft_upper), -lim.velocity, lim.velocity)
-        low = np.clip(-lim.k_velocity * (v - v_min), -lim.effort, lim.effort)
-        high = np.clip(-lim.k_velocity * (v - v_max), -lim.effort, lim.effort)
-        return float(np.clip(torque, low, high))
+            v_min = clamp(-lim.k_position * (q - lim.soft_lower), -lim.velocity, lim.velocity)
+            v_max = clamp(-lim.k_position * (q - lim.soft_upper), -lim.velocity, lim.velocity)
+        low = clamp(-lim.k_velocity * (v - v_min), -lim.effort, lim.effort)
+        high = clamp(-lim.k_velocity * (v - v_max), -lim.effort, lim.effort)
+        return float(clamp(torque, low, high))
 
 
 class Arm:
