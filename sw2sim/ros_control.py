@@ -55,6 +55,20 @@ def _urdf_tree(path: str | os.PathLike) -> tuple[Path, etree._ElementTree]:
         raise LoadError(urdf, f"not well-formed XML: {exc.msg}", exc.lineno) from None
 
 
+def _attribute_line(file: Path, element, attribute: str) -> int | None:
+    """The line holding `attribute` of `element` (libxml2 reports where a start tag ends)."""
+    end = element.sourceline
+    if end is None:
+        return None
+    lines = file.read_text(encoding="utf-8", errors="replace").splitlines()
+    for number in range(min(end, len(lines)), 0, -1):
+        if f"{attribute}=" in lines[number - 1]:
+            return number
+        if f"<{element.tag}" in lines[number - 1]:
+            break
+    return end
+
+
 def _number(element, attribute: str, file: Path) -> float | None:
     text = element.get(attribute)
     if text is None:
@@ -62,7 +76,8 @@ def _number(element, attribute: str, file: Path) -> float | None:
     try:
         return float(text)
     except ValueError:
-        raise LoadError(file, f"<{element.tag} {attribute}={text!r}> is not a number", element.sourceline) from None
+        raise LoadError(file, f"<{element.tag} {attribute}={text!r}> is not a number; write it in SI units "
+                        "without a unit, e.g. 1000", _attribute_line(file, element, attribute)) from None
 
 
 def read_joint_limits(path: str | os.PathLike) -> dict[str, JointLimits]:
