@@ -1,13 +1,14 @@
-"""Practice 3, MuJoCo version: effort-based joint position controllers, set up like ROS's.
+"""Practice 3, MuJoCo version: effort-based position controllers, set up like ROS's.
 
-In Gazebo, gazebo_ros_control and effort_controllers/JointPositionController do this
-work; here the script does it, reading the same files:
+In Gazebo, gazebo_ros_control and effort_controllers/JointPositionController do
+this work; here the script does it, reading the same files:
 - the PID gains and the joint-state rate from config/joint_names_example_3.yaml;
-- one motor per <transmission> in the URDF, its torque clipped at the joint's effort limit;
-- the velocity limit and the <safety_controller> gains from the URDF, which MuJoCo's
-  importer drops, enforced the way ros_control's joint_limits_interface does it.
+- one motor per <transmission> in the URDF, clipped at the joint's effort limit;
+- the velocity limit and the <safety_controller> gains from the URDF, which
+  MuJoCo's importer drops, enforced the way ros_control's limits interface does.
 
-Run it from the repository root:  python examples/example_3/scripts/arm_controller.py
+Run it from the repository root:
+    python examples/example_3/scripts/arm_controller.py
 """
 
 import math
@@ -21,27 +22,29 @@ from sw2sim.ros_control import add_motors, read_controllers, read_joint_limits
 
 PACKAGE = Path("examples/example_3")        # run from the repository root
 CONFIG = PACKAGE / "config" / "joint_names_example_3.yaml"
-TIMESTEP = 0.001   # s: Gazebo's default physics step; the controllers run at every step, as in Gazebo
-# rad/s²: how quickly each joint is brought up to speed and slowed down again. The middle
-# joint is gentler: each change of its speed shakes the end arm it carries.
+POSITION_CONTROLLER = "effort_controllers/JointPositionController"
+TIMESTEP = 0.001   # s: Gazebo's default step; the controllers run at every step
+# rad/s²: how quickly each joint is brought up to speed and slowed down again.
+# The middle joint is gentler: each change of its speed shakes the end arm.
 ACCELERATION = {"middle_arm_joint": 5.0, "end_arm_joint": 10.0}
-CRUISE = 0.95         # lead each joint at 95 % of its velocity limit: room for the pushes of the other arm
+CRUISE = 0.95      # lead each joint at 95 % of its velocity limit
 
 
 def clamp(value, low, high):
-    """`value` kept between `low` and `high` (plain Python: much faster than np.clip on one number)."""
+    """`value` kept between `low` and `high` (faster than np.clip on one number)."""
     return min(max(value, low), high)
 
 
 class Pid:
-    """A PID on the position error. The integral term is clamped to ±i_clamp, as in ROS's control_toolbox."""
+    """A PID on the position error; the integral is clamped to ±i_clamp."""
 
     def __init__(self, p, i=0.0, d=0.0, i_clamp=0.0):
         self.p, self.i, self.d, self.i_clamp = p, i, d, i_clamp
         self.integral = 0.0
 
     def __call__(self, error, error_rate, dt):
-        self.integral = clamp(self.integral + self.i * error * dt, -self.i_clamp, self.i_clamp)
+        self.integral = clamp(self.integral + self.i * error * dt,
+                              -self.i_clamp, self.i_clamp)
         return self.p * error + self.integral + self.d * error_rate
 
 
@@ -55,12 +58,12 @@ class JointPositionController:
         self.pid = Pid(**gains)
         self.limits = limits
         self.setpoint = 0.0
-        self.reference = None       # where the joint is led, on its way to the setpoint
+        self.reference = None     # where the joint is led, on its way to the setpoint
         self.reference_speed = 0.0
 
     def command(self, position):
-        """A new setpoint, kept inside the joint's limits (the ROS controller does the same)."""
-        self.setpoint = float(clamp(position, self.limits.lower, self.limits.upper))
+        """A new setpoint, kept inside the limits (as the ROS controller does)."""
+        self.setpoint = clamp(float(position), self.limits.lower, self.limits.upper)
 
     def effort(self, data, dt):
         q, v = float(data.qpos[self.qpos]), float(data.qvel[self.dof])
@@ -71,12 +74,13 @@ class JointPositionController:
         return self.enforce_limits(torque, q, v)
 
     def lead(self, dt):
-        """Move the reference towards the setpoint: speed up at ACCELERATION, cruise just under
-        the velocity limit, and slow down in time to stop on the setpoint."""
+        """Move the reference towards the setpoint: speed up at ACCELERATION,
+        cruise just under the velocity limit, slow down in time to stop on it."""
         left = self.setpoint - self.reference
         acceleration = ACCELERATION[self.joint]
         can_stop_from = math.sqrt(2 * acceleration * abs(left))
-        wanted = math.copysign(min(CRUISE * self.limits.velocity, can_stop_from), left)
+        top = CRUISE * self.limits.velocity
+        wanted = math.copysign(min(top, can_stop_from), left)
         change = acceleration * dt
         self.reference_speed += clamp(wanted - self.reference_speed, -change, change)
         if abs(left) <= abs(self.reference_speed) * dt:
@@ -85,24 +89,26 @@ class JointPositionController:
             self.reference += self.reference_speed * dt
 
     def enforce_limits(self, torque, q, v):
-        """Clip the torque so the joint stays under its velocity limit and inside its soft limits.
+        """Clip the torque to keep the joint under its velocity limit and inside
+        its soft limits, as ros_control's soft joint limits do.
 
-        Near the velocity limit, the torque allowed in the direction of motion falls to zero;
-        above it, the torque must slow the joint down. Near a soft position limit, the speed
-        allowed towards it shrinks in proportion to the distance left (k_position).
+        Near the velocity limit, the torque allowed in the direction of motion
+        falls to zero; above it, only a braking torque is allowed. Near a soft
+        position limit, the speed allowed towards it shrinks with the distance
+        left (k_position).
         """
-        lim = self.limits
-        v_min, v_max = -lim.velocity, lim.velocity
+        lim, top = self.limits, self.limits.velocity
+        v_min, v_max = -top, top
         if lim.has_soft_limits:
-            v_min = clamp(-lim.k_position * (q - lim.soft_lower), -lim.velocity, lim.velocity)
-            v_max = clamp(-lim.k_position * (q - lim.soft_upper), -lim.velocity, lim.velocity)
+            v_min = clamp(-lim.k_position * (q - lim.soft_lower), -top, top)
+            v_max = clamp(-lim.k_position * (q - lim.soft_upper), -top, top)
         low = clamp(-lim.k_velocity * (v - v_min), -lim.effort, lim.effort)
         high = clamp(-lim.k_velocity * (v - v_max), -lim.effort, lim.effort)
-        return float(clamp(torque, low, high))
+        return clamp(torque, low, high)
 
 
 class Arm:
-    """The arm in MuJoCo with its two position controllers and a joint-state log at the YAML's rate."""
+    """The arm in MuJoCo, its position controllers and a joint-state log."""
 
     def __init__(self, package=PACKAGE, config=CONFIG):
         spec = sw2sim.load_package(package)
@@ -112,20 +118,24 @@ class Arm:
         self.data = mujoco.MjData(self.model)
 
         limits = read_joint_limits(package)
-        settings = read_controllers(config)[self.model.names.split(b"\0")[0].decode()]
+        settings = read_controllers(config)[spec.modelname]
         self.state_rate = settings["joint_state_controller"]["publish_rate"]
         self.controllers = {
-            name: JointPositionController(self.model, c["joint"], c["pid"], limits[c["joint"]])
-            for name, c in settings.items() if c.get("type") == "effort_controllers/JointPositionController"
+            name: JointPositionController(self.model, c["joint"], c["pid"],
+                                          limits[c["joint"]])
+            for name, c in settings.items() if c.get("type") == POSITION_CONTROLLER
         }
-        motor_of = {self.model.actuator(m).trnid[0]: i for i, m in enumerate(motors)}
-        self.motor = {name: motor_of[self.model.joint(c.joint).id] for name, c in self.controllers.items()}
+        # which entry of data.ctrl drives each controller's joint
+        joint_motor = {self.model.actuator(m).trnid[0]: i for i, m in enumerate(motors)}
+        self.motor = {name: joint_motor[self.model.joint(c.joint).id]
+                      for name, c in self.controllers.items()}
         self.log = []
         self._every = max(1, round(1 / (self.state_rate * TIMESTEP)))
         self._steps = 0
 
     def command(self, **setpoints):
-        """Like publishing to <controller>/command: arm.command(middle_arm_controller=0.5)."""
+        """Like publishing to <controller>/command:
+        arm.command(middle_arm_controller=0.5)."""
         for name, value in setpoints.items():
             self.controllers[name].command(value)
 
@@ -133,7 +143,8 @@ class Arm:
         if self._steps % self._every == 0:
             self._record()
         for name, controller in self.controllers.items():
-            self.data.ctrl[self.motor[name]] = controller.effort(self.data, TIMESTEP)
+            torque = controller.effort(self.data, TIMESTEP)
+            self.data.ctrl[self.motor[name]] = torque
         mujoco.mj_step(self.model, self.data)
         self._steps += 1
 
@@ -146,11 +157,12 @@ class Arm:
         for name, c in self.controllers.items():
             q = self.data.qpos[c.qpos]
             row[name] = {"set_point": c.setpoint, "process_value": q,
-                         "process_value_dot": self.data.qvel[c.dof], "error": c.setpoint - q}
+                         "process_value_dot": self.data.qvel[c.dof],
+                         "error": c.setpoint - q}
         self.log.append(row)
 
     def states(self, controller, field):
-        """One field of one controller's state over time, as an array (like `rostopic echo`)."""
+        """One field of a controller's state over time (like `rostopic echo`)."""
         return np.array([row[controller][field] for row in self.log])
 
     def times(self):
@@ -161,6 +173,6 @@ if __name__ == "__main__":
     arm = Arm()
     arm.command(middle_arm_controller=0.5, end_arm_controller=-0.7)
     arm.run(2.0)
-    for name in arm.controllers:
-        print(f"{name:22} set point {arm.controllers[name].setpoint:+.4f} rad, "
+    for name, c in arm.controllers.items():
+        print(f"{name:22} set point {c.setpoint:+.4f} rad, "
               f"position {arm.states(name, 'process_value')[-1]:+.4f} rad")

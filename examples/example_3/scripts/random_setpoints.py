@@ -1,4 +1,4 @@
-"""Practice 3's movement script, MuJoCo version: a random position for each joint every 5 s.
+"""Practice 3, MuJoCo version of the movement script: random set points every 5 s.
 
 Each setpoint is drawn between the joint's limits (±0.7854 rad) and held for
 PERIOD seconds, a rate of 1 / 5 s = 0.2 Hz. Run it from the repository root:

@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
-"""Practice 3's movement script, ROS 1 version: a random position for each joint every 5 s.
+"""Practice 3, ROS 1 version of the movement script: random set points every 5 s.
 
-It publishes std_msgs/Float64 on the topics `mid_arm` and `end_arm`; launch/gazebo.launch
+It publishes std_msgs/Float64 on the topics `mid_arm` and `end_arm`;
+launch/gazebo.launch
 remaps them to the two position controllers' command topics.
 """
 
