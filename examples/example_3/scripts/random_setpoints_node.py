@@ -2,8 +2,7 @@
 """Practice 3, ROS 1 version of the movement script: random set points every 5 s.
 
 It publishes std_msgs/Float64 on the topics `mid_arm` and `end_arm`;
-launch/gazebo.launch
-remaps them to the two position controllers' command topics.
+launch/gazebo.launch remaps them to the two controllers' command topics.
 """
 
 import random
