@@ -51,12 +51,13 @@ class Pid:
 class JointPositionController:
     """Turns a position setpoint into a joint torque, within the joint's limits."""
 
-    def __init__(self, model, joint, gains, limits):
+    def __init__(self, model, joint, gains, limits, acceleration):
         self.joint = joint
         self.qpos = model.joint(joint).qposadr[0]
         self.dof = model.joint(joint).dofadr[0]
         self.pid = Pid(**gains)
         self.limits = limits
+        self.acceleration = acceleration
         self.setpoint = 0.0
         self.reference = None     # where the joint is led, on its way to the setpoint
         self.reference_speed = 0.0
@@ -74,10 +75,10 @@ class JointPositionController:
         return self.enforce_limits(torque, q, v)
 
     def lead(self, dt):
-        """Move the reference towards the setpoint: speed up at ACCELERATION,
+        """Move the reference towards the setpoint: speed up at `acceleration`,
         cruise just under the velocity limit, slow down in time to stop on it."""
         left = self.setpoint - self.reference
-        acceleration = ACCELERATION[self.joint]
+        acceleration = self.acceleration
         can_stop_from = math.sqrt(2 * acceleration * abs(left))
         top = CRUISE * self.limits.velocity
         wanted = math.copysign(min(top, can_stop_from), left)
@@ -122,7 +123,7 @@ class Arm:
         self.state_rate = settings["joint_state_controller"]["publish_rate"]
         self.controllers = {
             name: JointPositionController(self.model, c["joint"], c["pid"],
-                                          limits[c["joint"]])
+                                          limits[c["joint"]], ACCELERATION[c["joint"]])
             for name, c in settings.items() if c.get("type") == POSITION_CONTROLLER
         }
         # which entry of data.ctrl drives each controller's joint
