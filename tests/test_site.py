@@ -236,6 +236,17 @@ def test_no_unrendered_dollar_math(site, sources):
     assert not problems, "write inline math as $$...$$:\n" + "\n".join(problems)
 
 
+def test_pages_with_math_load_the_math_renderer(site):
+    """kramdown turns $$...$$ into \\(...\\) or \\[...\\]; without `math: true` they stay as text."""
+    missing = []
+    for page in sorted(site.rglob("*.html")):
+        html = page.read_text()
+        text = re.sub(r"<(pre|code|script)\b.*?</\1>", "", html, flags=re.S)
+        if ("\\(" in text or "\\[" in text) and "/assets/js/math.js" not in html:
+            missing.append(str(page.relative_to(site)))
+    assert not missing, "add `math: true` to the front matter of:\n" + "\n".join(missing)
+
+
 def test_images_load_lazily(site):
     eager = [f"{page.relative_to(site)}: {tag}" for page in site.rglob("*.html")
              for tag in re.findall(r"<img\b[^>]*>", page.read_text(encoding="utf-8"))

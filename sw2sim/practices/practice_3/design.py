@@ -148,7 +148,7 @@ def controllers_yaml() -> str:
     names = "".join(f"'{j}', " for j in JOINTS)
     return f"""controller_joint_names: ['', {names}]
 
-# Added for Practice 3: the controllers gazebo_ros_control starts (see launch/gazebo.launch).
+# Added for Practice 3: the controllers, loaded by launch/gazebo.launch
 {PACKAGE}:
   joint_state_controller:
     type: joint_state_controller/JointStateController
