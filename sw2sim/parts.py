@@ -84,6 +84,9 @@ class Dimension:
     offset > 0, or min(a_v, b_v) + offset when offset < 0; 'v' likewise with the roles
     swapped. `offset` is in metres of the part. The text is the measured length in mm unless
     `label` is given (e.g. "Ø20 THRU").
+    'a' (aligned) measures the true distance between `a` and `b` in the view and draws the
+    dimension line parallel to it, `offset` to the left of the direction from `a` to `b`
+    (to the right when negative).
     """
 
     view: str
@@ -94,12 +97,31 @@ class Dimension:
     label: str | None = None  # override the text, e.g. "Ø20 THRU"
 
 
+@dataclass(frozen=True)
+class Angle:
+    """An angular dimension on the drawing: the angle at `vertex` between the line towards `a`
+    and the line towards `b`, both in the plane of `view` (the smaller of the two angles).
+
+    It is drawn as an arc of `radius` (metres of the part) about the vertex, with an arrowhead
+    on each leg. A leg whose point lies inside the arc is not an edge of the part but one
+    produced past the vertex: it is drawn as an extension line from the vertex to beyond the
+    arc. The text is the angle in degrees unless `label` is given.
+    """
+
+    view: str
+    vertex: tuple[float, float, float]
+    a: tuple[float, float, float]
+    b: tuple[float, float, float]
+    radius: float = 0.03
+    label: str | None = None
+
+
 @dataclass
 class Part:
     name: str
     material: Material
     features: list[Feature]
-    dimensions: list[Dimension] = field(default_factory=list)
+    dimensions: list[Dimension | Angle] = field(default_factory=list)
     title: str = ""
     sections: int = 96  # facets around a cylinder: the exporter's "fine" quality
 
