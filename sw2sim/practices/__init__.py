@@ -8,7 +8,7 @@ from importlib import import_module
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
-PRACTICES = ["practice_1", "practice_2", "practice_3"]
+PRACTICES = ["practice_1", "practice_2", "practice_3", "practice_4"]
 
 
 def design(practice: str):
