@@ -320,3 +320,13 @@ def test_position_control_page_numbers(ctl):
     # "about 80 N·m·s/rad for the middle joint and 8 for the end joint": inertia / time step
     assert round(M[0, 0] / ctl.TIMESTEP, -1) == 80 and "about 80 N·m·s/rad" in text
     assert round(M[1, 1] / ctl.TIMESTEP) == 8 and "and 8 for the end joint" in text
+
+
+def test_without_a_safety_controller_only_the_effort_is_clipped(ctl):
+    from sw2sim.ros_control import JointLimits
+    arm = ctl.Arm()
+    c = arm.controllers["middle_arm_controller"]
+    c.limits = JointLimits(lower=-LIMIT, upper=LIMIT, effort=50.0, velocity=2.0)
+    assert c.enforce_limits(80.0, q=0.0, v=5.0) == 50.0
+    assert c.enforce_limits(-10.0, q=0.0, v=5.0) == -10.0
+    assert c.enforce_limits(-90.0, q=0.0, v=-5.0) == -50.0

@@ -91,7 +91,8 @@ class JointPositionController:
 
     def enforce_limits(self, torque, q, v):
         """Clip the torque to keep the joint under its velocity limit and inside
-        its soft limits, as ros_control's soft joint limits do.
+        its soft limits, as ros_control's soft joint limits do. A joint without
+        a <safety_controller> gets only the effort limit, as in ROS.
 
         Near the velocity limit, the torque allowed in the direction of motion
         falls to zero; above it, only a braking torque is allowed. Near a soft
@@ -99,10 +100,10 @@ class JointPositionController:
         left (k_position).
         """
         lim, top = self.limits, self.limits.velocity
-        v_min, v_max = -top, top
-        if lim.has_soft_limits:
-            v_min = clamp(-lim.k_position * (q - lim.soft_lower), -top, top)
-            v_max = clamp(-lim.k_position * (q - lim.soft_upper), -top, top)
+        if not lim.has_soft_limits:     # no <safety_controller>: only the effort limit
+            return clamp(torque, -lim.effort, lim.effort)
+        v_min = clamp(-lim.k_position * (q - lim.soft_lower), -top, top)
+        v_max = clamp(-lim.k_position * (q - lim.soft_upper), -top, top)
         low = clamp(-lim.k_velocity * (v - v_min), -lim.effort, lim.effort)
         high = clamp(-lim.k_velocity * (v - v_max), -lim.effort, lim.effort)
         return clamp(torque, low, high)
