@@ -1445,10 +1445,11 @@ def _anchor(region, tol: float):
     return np.array([pt.x, pt.y])
 
 
-def _balloons(anchors: list, box, k: float) -> list:
+def _balloons(anchors: list, box, k: float, avoid_y=()) -> list:
     """Balloons (numbered circles) outside the view's box, each with a leader to its anchor.
 
-    `anchors` are (number, point in metres) of this view; box is the view geometry's sheet box.
+    `anchors` are (number, point in metres) of this view; box is the view geometry's sheet box;
+    `avoid_y` are heights of the joint names' leaders, which a balloon must not sit on.
     """
     x0, y0, x1, y1 = box
     centre = np.array([(x0 + x1) / 2, (y0 + y1) / 2])
@@ -1465,7 +1466,8 @@ def _balloons(anchors: list, box, k: float) -> list:
             ts = [((x0 - pad) - at[0]) / u[0] if u[0] < -1e-9 else ((x1 + pad) - at[0]) / u[0] if u[0] > 1e-9 else np.inf,
                   ((y0 - pad) - at[1]) / u[1] if u[1] < -1e-9 else ((y1 + pad) - at[1]) / u[1] if u[1] > 1e-9 else np.inf]
             spot = at + min(ts) * u
-            if all(np.linalg.norm(spot - o) > 2 * BALLOON_R + 2.0 for o in used):
+            if all(np.linalg.norm(spot - o) > 2 * BALLOON_R + 2.0 for o in used) and \
+                    all(abs(spot[1] - y) > BALLOON_R + 3.0 for y in avoid_y):
                 break
         used.append(spot)
         edge = spot - BALLOON_R * u
@@ -1597,7 +1599,9 @@ def assembly_drawing_svg(robot) -> str:
             layers = [("", [_Poly(_rings(p.outline.envelope, k), True) for p in views[v]])]
         box = _bbox([q for _, prims in layers for q in prims])
         notes = _joint_marks(robot, poses, k, box) if v == "top" else []
-        notes += _balloons(anchors[v], _bbox([_Poly((((box[0], box[1]), (box[2], box[3])),))] + notes), k)
+        leaders = [n.y1 for n in notes if isinstance(n, _Line) and n.style == "jointleader"]
+        notes += _balloons(anchors[v], _bbox([_Poly((((box[0], box[1]), (box[2], box[3])),))] + notes), k,
+                           leaders)
         notes += _label([q for _, prims in layers for q in prims] + notes, v.upper(), (box[0] + box[2]) / 2)
         if v == "top":  # a key to the joint marks, under the view's name
             y = notes[-1].y + 4.5

@@ -9,6 +9,8 @@ import pytest
 
 from sw2sim.drawing import assembly_drawing_svg, part_drawing_svg
 from sw2sim.parts import Box, Dimension, Material, Part
+from sw2sim.practices import PRACTICES
+from sw2sim.practices import design as practice_design
 from sw2sim.practices.practice_1 import design
 
 NS = {"s": "http://www.w3.org/2000/svg"}
@@ -335,3 +337,17 @@ def test_yawed_box_is_drawn_turned_in_the_top_view():
                 for el in sub for p in element_points(el)]
         xs, ys = [p[0] for p in wide], [p[1] for p in wide]
         assert (max(xs) - min(xs), max(ys) - min(ys)) == pytest.approx((w * k, h * k), abs=0.02), view
+
+
+@pytest.mark.parametrize("practice", PRACTICES)
+def test_balloons_keep_clear_of_the_joint_names(practice):
+    """A balloon level with a joint name would put its leader through the name."""
+    from sw2sim.drawing import BALLOON_R
+    robot = practice_design(practice).robot()
+    notes = texts(assembly_drawing_svg(robot), "top-notes")
+    names = {j.name for j in robot.joints}
+    balloons = [float(t.attrib["y"]) for t in notes if t.text.isdigit()]
+    labels = [float(t.attrib["y"]) for t in notes if t.text in names]
+    assert balloons and labels
+    for b in balloons:
+        assert all(abs(b - y) > BALLOON_R for y in labels), (practice, b, labels)
