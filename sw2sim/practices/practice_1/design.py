@@ -8,13 +8,10 @@ from pathlib import Path
 
 from ...exporter_format import Joint, Link, Robot, write_package
 from ...parts import Box, Cylinder, Dimension, Material, Part
+from ..shared import mm
 
 PACKAGE = "example_1"
 ALUMINIUM = Material("Aluminium 6061-T6", 2700.0)
-
-
-def mm(*values: float):
-    return tuple(v / 1000 for v in values) if len(values) > 1 else values[0] / 1000
 
 
 # --- the wheel -----------------------------------------------------------------------------

@@ -10,6 +10,7 @@ from ...plotting import figure, save
 from ...render import render, save_png
 from .. import load_script
 from . import design
+from ..shared import assembly_drawing, part_drawing
 
 import mujoco  # noqa: E402  (after sw2sim has chosen the GL platform)
 
@@ -21,17 +22,6 @@ def pulses():
     return load_script(f"{PACKAGE}/scripts/periodic_force.py")
 
 
-def drawing(part_factory):
-    def make(path: Path) -> None:
-        from ...drawing import part_drawing_svg
-        path.write_text(part_drawing_svg(part_factory()))
-    make.__qualname__ = f"drawing_{part_factory.__name__}"
-    return make
-
-
-def assembly(path: Path) -> None:
-    from ...drawing import assembly_drawing_svg
-    path.write_text(assembly_drawing_svg(design.robot()))
 
 
 def model_picture(path: Path) -> None:
@@ -118,13 +108,15 @@ def wheel_velocity(path: Path) -> None:
 
 
 MEDIA = "media/practice-1"
-DESIGN = ["sw2sim/practices/practice_1/design.py", "sw2sim/parts.py", "sw2sim/drawing.py"]
+DESIGN = ["sw2sim/practices/practice_1/design.py", "sw2sim/parts.py", "sw2sim/drawing.py",
+          "sw2sim/practices/shared.py"]
 SIM = [PACKAGE, "sw2sim/loader.py", "sw2sim/render.py", "sw2sim/plotting.py"]
 
 FIGURES = [
-    Figure(f"{MEDIA}/base.svg", drawing(design.base), DESIGN, "Drawing of the base"),
-    Figure(f"{MEDIA}/wheel.svg", drawing(design.wheel), DESIGN, "Drawing of the wheel"),
-    Figure(f"{MEDIA}/assembly.svg", assembly, DESIGN + ["sw2sim/exporter_format.py"], "Assembly"),
+    Figure(f"{MEDIA}/base.svg", part_drawing(design.base), DESIGN, "Drawing of the base"),
+    Figure(f"{MEDIA}/wheel.svg", part_drawing(design.wheel), DESIGN, "Drawing of the wheel"),
+    Figure(f"{MEDIA}/assembly.svg", assembly_drawing(design.robot),
+           DESIGN + ["sw2sim/exporter_format.py"], "Assembly"),
     Figure(f"{MEDIA}/model.png", model_picture, SIM, "The model in MuJoCo"),
     Figure(f"{MEDIA}/joint_axes.png", axes_picture, SIM, "Joint axes"),
     Figure(f"{MEDIA}/unlocked_base.png", unlocked_strip, SIM, "A base that is not locked"),

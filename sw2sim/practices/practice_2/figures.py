@@ -9,8 +9,8 @@ from ...media import Figure
 from ...plotting import figure, save
 from ...render import render, save_png
 from .. import load_script
-from ..practice_1.figures import drawing
 from . import design
+from ..shared import assembly_drawing, part_drawing
 
 import mujoco  # noqa: E402  (after sw2sim has chosen the GL platform)
 
@@ -25,10 +25,6 @@ def pulses():
     """Practice 1's pulse script, imported from where it lives (no copy of it here)."""
     return load_script(PULSE_SCRIPT)
 
-
-def assembly(path: Path) -> None:
-    from ...drawing import assembly_drawing_svg
-    path.write_text(assembly_drawing_svg(design.robot()))
 
 
 def model_picture(path: Path) -> None:
@@ -230,13 +226,15 @@ def friction_velocity(path: Path) -> None:
 
 MEDIA = "media/practice-2"
 DESIGN = ["sw2sim/practices/practice_2/design.py", "sw2sim/practices/practice_1/design.py",
-          "sw2sim/practices/practice_1/figures.py", "sw2sim/parts.py", "sw2sim/drawing.py"]
+          "sw2sim/parts.py", "sw2sim/drawing.py",
+          "sw2sim/practices/shared.py"]
 SIM = [PACKAGE, "sw2sim/loader.py", "sw2sim/render.py", "sw2sim/plotting.py"]
 PULSE = [PULSE_SCRIPT]
 
 FIGURES = [
-    Figure(f"{MEDIA}/base.svg", drawing(design.base), DESIGN, "Drawing of the base"),
-    Figure(f"{MEDIA}/assembly.svg", assembly, DESIGN + ["sw2sim/exporter_format.py"], "Assembly"),
+    Figure(f"{MEDIA}/base.svg", part_drawing(design.base), DESIGN, "Drawing of the base"),
+    Figure(f"{MEDIA}/assembly.svg", assembly_drawing(design.robot),
+           DESIGN + ["sw2sim/exporter_format.py"], "Assembly"),
     Figure(f"{MEDIA}/model.png", model_picture, SIM, "The model in MuJoCo"),
     Figure(f"{MEDIA}/joint_axes.png", axes_picture, SIM, "Joint axes"),
     Figure(f"{MEDIA}/wrong_axis.png", wrong_axis_picture, SIM + ["sw2sim/practices/practice_2/design.py"],

@@ -8,15 +8,14 @@ makes the arm's end sit at 67.5° from the centre pivot when both joints are at 
 import math
 from pathlib import Path
 
-from ...exporter_format import Joint, Limit, Link, Robot, Safety, Transmission, write_package
+from ... import exporter_format
+from ...exporter_format import (ROS_CONTROL_DEPENDS, Joint, Limit, Link, Robot, Safety, Transmission,
+                                ros_control_nodes, write_package)
 from ...parts import Box, Cylinder, Dimension, Material, Part
+from ..shared import mm
 
 PACKAGE = "example_3"
 ALUMINIUM = Material("Aluminium 6061-T6", 2700.0)
-
-
-def mm(*values: float):
-    return tuple(v / 1000 for v in values) if len(values) > 1 else values[0] / 1000
 
 
 # --- the arm's geometry -----------------------------------------------------------------------
@@ -137,44 +136,12 @@ STATE_RATE = 20               # Hz, joint_state_controller's publish rate
 
 
 def controllers_yaml() -> str:
-    def gains(joint):
-        return ", ".join(f"{k}: {v}" for k, v in GAINS[joint].items())
-    entries = "".join(f"""
-  {CONTROLLERS[j]}:
-    type: effort_controllers/JointPositionController
-    joint: {j}
-    pid: {{{gains(j)}}}
-""" for j in JOINTS)
-    names = "".join(f"'{j}', " for j in JOINTS)
-    return f"""controller_joint_names: ['', {names}]
-
-# Added for Practice 3: the controllers, loaded by launch/gazebo.launch
-{PACKAGE}:
-  joint_state_controller:
-    type: joint_state_controller/JointStateController
-    publish_rate: {STATE_RATE}
-{entries}"""
+    return exporter_format.controllers_yaml(
+        robot(), {j: (CONTROLLERS[j], GAINS[j]) for j in JOINTS}, STATE_RATE,
+        "Added for Practice 3: the controllers, loaded by launch/gazebo.launch")
 
 
-GAZEBO_NODES = f"""  <rosparam
-    file="$(find {PACKAGE})/config/joint_names_{PACKAGE}.yaml"
-    command="load" />
-  <node
-    name="controller_spawner"
-    pkg="controller_manager"
-    type="spawner"
-    ns="/{PACKAGE}"
-    args="joint_state_controller {' '.join(CONTROLLERS.values())}"
-    output="screen" />
-  <node
-    name="robot_state_publisher"
-    pkg="robot_state_publisher"
-    type="robot_state_publisher">
-    <remap
-      from="/joint_states"
-      to="/{PACKAGE}/joint_states" />
-  </node>
-  <node
+GAZEBO_NODES = ros_control_nodes(PACKAGE, CONTROLLERS.values()) + f"""  <node
     name="random_setpoints"
     pkg="{PACKAGE}"
     type="random_setpoints_node.py"
@@ -209,7 +176,7 @@ def robot() -> Robot:
     r.colours = {name: rgba for name, rgba in COLOURS.items()}
     r.transmissions = [Transmission(j) for j in JOINTS]
     r.gazebo_plugin = "libgazebo_ros_control.so"
-    r.depends = ["gazebo_ros_control", "controller_manager", "joint_state_controller", "effort_controllers"]
+    r.depends = list(ROS_CONTROL_DEPENDS)
     return r
 
 

@@ -11,6 +11,7 @@ from ...plotting import figure, save
 from ...render import render, save_png
 from .. import load_script
 from . import design
+from ..shared import assembly_drawing, part_drawing
 
 import mujoco  # noqa: E402  (after sw2sim has chosen the GL platform)
 
@@ -22,17 +23,6 @@ def controller():
     return load_script(f"{SCRIPTS}/arm_controller.py")
 
 
-def drawing(part_factory):
-    def make(path: Path) -> None:
-        from ...drawing import part_drawing_svg
-        path.write_text(part_drawing_svg(part_factory()))
-    make.__qualname__ = f"drawing_{part_factory.__name__}"
-    return make
-
-
-def assembly(path: Path) -> None:
-    from ...drawing import assembly_drawing_svg
-    path.write_text(assembly_drawing_svg(design.robot()))
 
 
 def posed(model, angles):
@@ -158,14 +148,16 @@ def setpoints(path: Path) -> None:
 
 
 MEDIA = "media/practice-3"
-DESIGN = ["sw2sim/practices/practice_3/design.py", "sw2sim/parts.py", "sw2sim/drawing.py"]
+DESIGN = ["sw2sim/practices/practice_3/design.py", "sw2sim/parts.py", "sw2sim/drawing.py",
+          "sw2sim/practices/shared.py"]
 SIM = [PACKAGE, "sw2sim/loader.py", "sw2sim/ros_control.py", "sw2sim/render.py", "sw2sim/plotting.py"]
 
 FIGURES = [
-    Figure(f"{MEDIA}/base.svg", drawing(design.base), DESIGN, "Drawing of the base"),
-    Figure(f"{MEDIA}/middle_arm.svg", drawing(design.middle_arm), DESIGN, "Drawing of the middle arm"),
-    Figure(f"{MEDIA}/end_arm.svg", drawing(design.end_arm), DESIGN, "Drawing of the end arm"),
-    Figure(f"{MEDIA}/assembly.svg", assembly, DESIGN + ["sw2sim/exporter_format.py"], "Assembly"),
+    Figure(f"{MEDIA}/base.svg", part_drawing(design.base), DESIGN, "Drawing of the base"),
+    Figure(f"{MEDIA}/middle_arm.svg", part_drawing(design.middle_arm), DESIGN, "Drawing of the middle arm"),
+    Figure(f"{MEDIA}/end_arm.svg", part_drawing(design.end_arm), DESIGN, "Drawing of the end arm"),
+    Figure(f"{MEDIA}/assembly.svg", assembly_drawing(design.robot),
+           DESIGN + ["sw2sim/exporter_format.py"], "Assembly"),
     Figure(f"{MEDIA}/model.png", model_picture, SIM, "The arm in MuJoCo"),
     Figure(f"{MEDIA}/reach.png", reach, SIM, "The arm's reach at its limits"),
     Figure(f"{MEDIA}/velocity_limit.png", velocity_limit, SIM, "Joint speed with and without the limit"),

@@ -8,15 +8,14 @@ left end plate, at 2.69 m it is 10 mm from the right one.
 
 from pathlib import Path
 
-from ...exporter_format import Joint, Limit, Link, Robot, Safety, Transmission, write_package
+from ... import exporter_format
+from ...exporter_format import (ROS_CONTROL_DEPENDS, Joint, Limit, Link, Robot, Safety, Transmission,
+                                ros_control_nodes, write_package)
 from ...parts import Box, Cylinder, Dimension, Material, Part
+from ..shared import mm
 
 PACKAGE = "example_4"
 ALUMINIUM = Material("Aluminium 6061-T6", 2700.0)
-
-
-def mm(*values: float):
-    return tuple(v / 1000 for v in values) if len(values) > 1 else values[0] / 1000
 
 
 # --- the travel --------------------------------------------------------------------------------
@@ -112,41 +111,12 @@ STATE_RATE = 20               # Hz, joint_state_controller's publish rate
 
 
 def controllers_yaml() -> str:
-    gains = ", ".join(f"{k}: {v}" for k, v in GAINS.items())
-    return f"""controller_joint_names: ['', '{JOINT}', ]
-
-# Added for Practice 4: the controllers gazebo_ros_control starts (see launch/gazebo.launch).
-{PACKAGE}:
-  joint_state_controller:
-    type: joint_state_controller/JointStateController
-    publish_rate: {STATE_RATE}
-
-  {CONTROLLER}:
-    type: effort_controllers/JointPositionController
-    joint: {JOINT}
-    pid: {{{gains}}}
-"""
+    return exporter_format.controllers_yaml(
+        robot(), {JOINT: (CONTROLLER, GAINS)}, STATE_RATE,
+        "Added for Practice 4: the controllers, loaded by launch/gazebo.launch")
 
 
-GAZEBO_NODES = f"""  <rosparam
-    file="$(find {PACKAGE})/config/joint_names_{PACKAGE}.yaml"
-    command="load" />
-  <node
-    name="controller_spawner"
-    pkg="controller_manager"
-    type="spawner"
-    ns="/{PACKAGE}"
-    args="joint_state_controller {CONTROLLER}"
-    output="screen" />
-  <node
-    name="robot_state_publisher"
-    pkg="robot_state_publisher"
-    type="robot_state_publisher">
-    <remap
-      from="/joint_states"
-      to="/{PACKAGE}/joint_states" />
-  </node>
-"""
+GAZEBO_NODES = ros_control_nodes(PACKAGE, [CONTROLLER])
 
 
 def robot(upper: float = UPPER) -> Robot:
@@ -164,7 +134,7 @@ def robot(upper: float = UPPER) -> Robot:
     r.colours = dict(COLOURS)
     r.transmissions = [Transmission(JOINT)]
     r.gazebo_plugin = "libgazebo_ros_control.so"
-    r.depends = ["gazebo_ros_control", "controller_manager", "joint_state_controller", "effort_controllers"]
+    r.depends = list(ROS_CONTROL_DEPENDS)
     return r
 
 

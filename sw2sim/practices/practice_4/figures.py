@@ -12,6 +12,7 @@ from ...plotting import figure, save
 from ...render import render, save_png
 from .. import load_script
 from . import design
+from ..shared import assembly_drawing, part_drawing
 
 import mujoco  # noqa: E402  (after sw2sim has chosen the GL platform)
 
@@ -26,17 +27,6 @@ def script():
     return load_script(SCRIPT)
 
 
-def drawing(part_factory):
-    def make(path: Path) -> None:
-        from ...drawing import part_drawing_svg
-        path.write_text(part_drawing_svg(part_factory()))
-    make.__qualname__ = f"drawing_{part_factory.__name__}"
-    return make
-
-
-def assembly(path: Path) -> None:
-    from ...drawing import assembly_drawing_svg
-    path.write_text(assembly_drawing_svg(design.robot()))
 
 
 def posed(model, position):
@@ -217,14 +207,16 @@ def _box(x, y, w, h, colour):
 
 
 MEDIA = "media/practice-4"
-DESIGN = ["sw2sim/practices/practice_4/design.py", "sw2sim/parts.py", "sw2sim/drawing.py"]
+DESIGN = ["sw2sim/practices/practice_4/design.py", "sw2sim/parts.py", "sw2sim/drawing.py",
+          "sw2sim/practices/shared.py"]
 SIM = [PACKAGE, "examples/example_3/scripts/arm_controller.py", "sw2sim/loader.py",
        "sw2sim/ros_control.py", "sw2sim/render.py", "sw2sim/plotting.py"]
 
 FIGURES = [
-    Figure(f"{MEDIA}/bar.svg", drawing(design.bar), DESIGN, "Drawing of the bar with its end plates"),
-    Figure(f"{MEDIA}/block.svg", drawing(design.block), DESIGN, "Drawing of the block"),
-    Figure(f"{MEDIA}/assembly.svg", assembly, DESIGN + ["sw2sim/exporter_format.py"], "Assembly"),
+    Figure(f"{MEDIA}/bar.svg", part_drawing(design.bar), DESIGN, "Drawing of the bar with its end plates"),
+    Figure(f"{MEDIA}/block.svg", part_drawing(design.block), DESIGN, "Drawing of the block"),
+    Figure(f"{MEDIA}/assembly.svg", assembly_drawing(design.robot),
+           DESIGN + ["sw2sim/exporter_format.py"], "Assembly"),
     Figure(f"{MEDIA}/model.png", model_picture, SIM, "The bar and block in MuJoCo"),
     Figure(f"{MEDIA}/limit_typo.png", limit_typo, SIM, "A typo in the upper limit"),
     Figure(f"{MEDIA}/viewer_sliders.png", viewer_sliders, SIM, "The viewer's slider, sketched"),
