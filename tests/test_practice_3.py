@@ -1,12 +1,12 @@
 """What the Practice 3 pages claim, checked against the model and its controllers."""
 
 import math
-import re
 import shutil
 
 import mujoco
 import numpy as np
 import pytest
+from page_text import squash, xml_blocks
 import yaml
 
 import sw2sim
@@ -272,14 +272,6 @@ def test_exporting_page_numbers(ctl):
     assert f"{end:.2f} m/s" in text and f"{middle:.1f} + {end:.2f} = {both:.2f} m/s" in text
     assert f'k_velocity="{design.K_VELOCITY["middle_arm_joint"]:g}"' in text
     assert f"`{design.K_VELOCITY['middle_arm_joint']:g}` (middle) / `{design.K_VELOCITY['end_arm_joint']:g}` (end)" in text
-
-
-def xml_blocks(text):
-    return re.findall(r"```xml\n(.*?)```", text, re.S)
-
-
-def squash(xml):
-    return re.sub(r"\s+", " ", xml).replace("> <", "><").strip()
 
 
 def test_xml_shown_on_the_pages_is_in_the_package():

@@ -1,11 +1,11 @@
 """What the Practice 4 pages claim, checked against the model, its controller and its figures."""
 
 import math
-import re
 
 import mujoco
 import numpy as np
 import pytest
+from page_text import squash, xml_blocks
 import yaml
 
 import sw2sim
@@ -226,14 +226,6 @@ def test_testing_page_numbers(script):
     assert "2 m/s²" in text and script.ACCELERATION == 2.0
     assert "95 %" in text and "about 3.2 s" in text and "about 17 cm in 3 s" in text
     assert "tolerance of 1 mm" in text and TOLERANCE == 0.001
-
-
-def xml_blocks(text):
-    return re.findall(r"```xml\n(.*?)```", text, re.S)
-
-
-def squash(xml):
-    return re.sub(r"\s+", " ", xml).replace("> <", "><").strip()
 
 
 def test_xml_shown_on_the_pages_is_in_the_package():
