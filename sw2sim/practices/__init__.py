@@ -8,7 +8,7 @@ from importlib import import_module
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
-PRACTICES = ["practice_1", "practice_2", "practice_3", "practice_4"]
+PRACTICES = ["practice_1", "practice_2", "practice_3", "practice_4", "practice_5"]
 
 
 def design(practice: str):
