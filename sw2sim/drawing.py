@@ -1485,10 +1485,12 @@ def _joint_marks(robot, poses, k: float, box) -> list:
     d, h, v = (np.array(x) for x in VIEWS["top"])
     middle = (box[0] + box[2]) / 2
     out = []
+    names: dict[tuple[float, float], list[str]] = {}  # joints that share an origin share a label
     for j in robot.joints:
         T = poses[j.child]
         o = T[:3, 3]
         x, y = float(k * (o @ h)), float(-k * (o @ v))
+        names.setdefault((round(x, 2), round(y, 2)), []).append(j.name)
         out += [_Line(x - JOINT_CROSS, y, x + JOINT_CROSS, y, "joint"),
                 _Line(x, y - JOINT_CROSS, x, y + JOINT_CROSS, "joint")]
         if j.axis is None:
@@ -1509,10 +1511,11 @@ def _joint_marks(robot, poses, k: float, box) -> list:
             out.append(_Circle(x, y, 2.5, "joint"))
             if axis @ d < 0:  # pointing at the viewer: a dot
                 out.append(_Circle(x, y, 0.6, "jointfill"))
+    for (x, y), joint_names in names.items():
         right = x >= middle
         end = box[2] + 3.0 if right else box[0] - 3.0
         out.append(_Line(x, y, end, y, "jointleader"))
-        out.append(_Text(end + (1.0 if right else -1.0), y + 0.7, j.name, 2.0,
+        out.append(_Text(end + (1.0 if right else -1.0), y + 0.7, ", ".join(joint_names), 2.0,
                          "start" if right else "end", style="jointtext"))
     return out
 

@@ -351,3 +351,16 @@ def test_balloons_keep_clear_of_the_joint_names(practice):
     assert balloons and labels
     for b in balloons:
         assert all(abs(b - y) > BALLOON_R for y in labels), (practice, b, labels)
+
+
+@pytest.mark.parametrize("practice", PRACTICES)
+def test_every_joint_is_named_once_and_names_do_not_overlap(practice):
+    robot = practice_design(practice).robot()
+    notes = texts(assembly_drawing_svg(robot), "top-notes")
+    names = {j.name for j in robot.joints}
+    labels = [t for t in notes if set(t.text.split(", ")) <= names]
+    shown = [n for t in labels for n in t.text.split(", ")]
+    assert sorted(shown) == sorted(names)
+    spots = [(t.attrib.get("text-anchor"), float(t.attrib["y"])) for t in labels]
+    for i, (side, y) in enumerate(spots):
+        assert all(s != side or abs(y - y2) > 2.0 for s, y2 in spots[i + 1:]), (practice, spots)
