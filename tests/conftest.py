@@ -1,5 +1,10 @@
 """Shared pytest configuration."""
 
+import os
+
+# Off-screen rendering: the GL platform must be chosen before any test module imports mujoco.
+os.environ.setdefault("MUJOCO_GL", "osmesa")
+
 
 def pytest_terminal_summary(terminalreporter, exitstatus, config):
     """How many page snippet blocks ran, and which were skipped and why (tests/test_pages.py)."""

@@ -3,11 +3,11 @@
 import ast
 import math
 
-import mujoco
 import numpy as np
 import pytest
 
 import sw2sim
+import mujoco
 from sw2sim.practices import ROOT, load_script
 from sw2sim.practices.practice_5 import design, figures
 

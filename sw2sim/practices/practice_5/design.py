@@ -12,15 +12,13 @@ Ackermann geometry (Equation 4) are then exactly the distances between the joint
 import math
 from pathlib import Path
 
-from ...exporter_format import Joint, Limit, Link, Robot, Safety, Transmission, write_package
+from ...exporter_format import (ROS_CONTROL_DEPENDS, Joint, Limit, Link, Robot, Safety, Transmission,
+                                ros_control_nodes, write_package)
 from ...parts import Box, Cylinder, Dimension, Material, Part
+from ..shared import mm
 
 PACKAGE = "example_5"
 ALUMINIUM = Material("Aluminium 6061-T6", 2700.0)
-
-
-def mm(*values: float):
-    return tuple(v / 1000 for v in values) if len(values) > 1 else values[0] / 1000
 
 
 # --- the layout ------------------------------------------------------------------------------
@@ -278,26 +276,8 @@ def controllers_yaml() -> str:
 
 
 def _gazebo_nodes() -> str:
-    controllers = " ".join([STEERING_CONTROLLER, *KNUCKLE_CONTROLLERS.values(), *WHEEL_CONTROLLERS.values()])
-    return f"""  <rosparam
-    file="$(find {PACKAGE})/config/joint_names_{PACKAGE}.yaml"
-    command="load" />
-  <node
-    name="controller_spawner"
-    pkg="controller_manager"
-    type="spawner"
-    ns="/{PACKAGE}"
-    args="joint_state_controller {controllers}"
-    output="screen" />
-  <node
-    name="robot_state_publisher"
-    pkg="robot_state_publisher"
-    type="robot_state_publisher">
-    <remap
-      from="/joint_states"
-      to="/{PACKAGE}/joint_states" />
-  </node>
-  <node
+    controllers = [STEERING_CONTROLLER, *KNUCKLE_CONTROLLERS.values(), *WHEEL_CONTROLLERS.values()]
+    return ros_control_nodes(PACKAGE, controllers) + f"""  <node
     name="ackermann"
     pkg="{PACKAGE}"
     type="ackermann_node.py"
@@ -345,7 +325,7 @@ def robot() -> Robot:
         r.colours[lk.name] = COLOURS[kind]
     r.transmissions = [Transmission(j) for j in JOINTS]
     r.gazebo_plugin = "libgazebo_ros_control.so"
-    r.depends = ["gazebo_ros_control", "controller_manager", "joint_state_controller", "effort_controllers"]
+    r.depends = list(ROS_CONTROL_DEPENDS)
     return r
 
 

@@ -11,6 +11,7 @@ from ...plotting import figure, save
 from ...render import render, save_png
 from .. import load_script
 from . import design
+from ..shared import assembly_drawing, part_drawing
 
 import mujoco  # noqa: E402  (after sw2sim has chosen the GL platform)
 
@@ -31,17 +32,6 @@ def script():
     return load_script(SCRIPT)
 
 
-def drawing(part_factory):
-    def make(path: Path) -> None:
-        from ...drawing import part_drawing_svg
-        path.write_text(part_drawing_svg(part_factory()))
-    make.__qualname__ = f"drawing_{part_factory.__name__}"
-    return make
-
-
-def assembly(path: Path) -> None:
-    from ...drawing import assembly_drawing_svg
-    path.write_text(assembly_drawing_svg(design.robot()))
 
 
 def fit_circle(x, y):
@@ -184,15 +174,16 @@ def not_ideal(path: Path) -> None:
 
 
 MEDIA = "media/practice-5"
-DESIGN = ["sw2sim/practices/practice_5/design.py", "sw2sim/parts.py", "sw2sim/drawing.py"]
+DESIGN = ["sw2sim/practices/practice_5/design.py", "sw2sim/parts.py", "sw2sim/drawing.py",
+          "sw2sim/practices/shared.py"]
 SIM = [PACKAGE, "sw2sim/loader.py", "sw2sim/ros_control.py", "sw2sim/render.py", "sw2sim/plotting.py"]
 
 FIGURES = [
-    Figure(f"{MEDIA}/chassis.svg", drawing(design.chassis), DESIGN, "Drawing of the chassis"),
-    Figure(f"{MEDIA}/knuckle.svg", drawing(design.knuckle), DESIGN, "Drawing of a steering knuckle"),
-    Figure(f"{MEDIA}/wheel.svg", drawing(design.wheel), DESIGN, "Drawing of a wheel"),
-    Figure(f"{MEDIA}/steering_link.svg", drawing(design.steering_link), DESIGN, "Drawing of the steering link"),
-    Figure(f"{MEDIA}/assembly.svg", assembly, DESIGN + ["sw2sim/exporter_format.py"], "Assembly"),
+    Figure(f"{MEDIA}/chassis.svg", part_drawing(design.chassis), DESIGN, "Drawing of the chassis"),
+    Figure(f"{MEDIA}/knuckle.svg", part_drawing(design.knuckle), DESIGN, "Drawing of a steering knuckle"),
+    Figure(f"{MEDIA}/wheel.svg", part_drawing(design.wheel), DESIGN, "Drawing of a wheel"),
+    Figure(f"{MEDIA}/steering_link.svg", part_drawing(design.steering_link), DESIGN, "Drawing of the steering link"),
+    Figure(f"{MEDIA}/assembly.svg", assembly_drawing(design.robot), DESIGN + ["sw2sim/exporter_format.py"], "Assembly"),
     Figure(f"{MEDIA}/model.png", model_picture, SIM, "The car in MuJoCo"),
     Figure(f"{MEDIA}/path_vs_circle.png", path_vs_circle, SIM, "Driven paths against the predicted circles"),
     Figure(f"{MEDIA}/knuckle_angles.png", knuckle_angles, SIM, "Knuckle angles against Equation 4"),
