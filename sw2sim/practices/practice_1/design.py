@@ -8,7 +8,7 @@ from pathlib import Path
 
 from ...exporter_format import Joint, Link, Robot, write_package
 from ...parts import Box, Cylinder, Dimension, Material, Part
-from ..shared import mm
+from ..shared import holed_wheel, mm
 
 PACKAGE = "example_1"
 ALUMINIUM = Material("Aluminium 6061-T6", 2700.0)
@@ -46,29 +46,8 @@ COLOURS = {
 
 
 def wheel(name: str = "wheel") -> Part:
-    r, w = WHEEL_DIAMETER / 2, WHEEL_WIDTH
-    p = HOLE_PITCH_DIAMETER / 2
-    holes = [Cylinder(mm(HOLE_DIAMETER / 2), mm(w + 2), "y", mm(x, 0, z), cut=True)
-             for x, z in ((p, 0), (-p, 0), (0, p), (0, -p))]
-    return Part(
-        name=name,
-        title="Wheel",
-        material=ALUMINIUM,
-        features=[
-            Cylinder(mm(r), mm(w), "y"),
-            Cylinder(mm(BORE_DIAMETER / 2), mm(w + 2), "y", cut=True),
-            *holes,
-        ],
-        dimensions=[
-            Dimension("front", mm(0, 0, -r), mm(0, 0, r), "v", 0.13, f"Ø{WHEEL_DIAMETER}"),
-            Dimension("front", mm(-p, 0, 0), mm(p, 0, 0), "h", -0.135, f"Ø{HOLE_PITCH_DIAMETER} PCD"),
-            Dimension("front", mm(p - HOLE_DIAMETER / 2, 0, 0), mm(p + HOLE_DIAMETER / 2, 0, 0), "h",
-                      0.125, f"4 × Ø{HOLE_DIAMETER} THRU"),
-            Dimension("front", mm(-BORE_DIAMETER / 2, 0, 0), mm(BORE_DIAMETER / 2, 0, 0), "h",
-                      0.125, f"Ø{BORE_DIAMETER} THRU"),
-            Dimension("side", mm(0, -w / 2, 0), mm(0, w / 2, 0), "h", 0.12),
-        ],
-    )
+    return holed_wheel(ALUMINIUM, WHEEL_DIAMETER, WHEEL_WIDTH, BORE_DIAMETER, HOLE_DIAMETER,
+                       HOLE_PITCH_DIAMETER, offsets=(0.13, -0.135, 0.125, 0.125, 0.12), name=name)
 
 
 def base() -> Part:

@@ -12,6 +12,7 @@ from pathlib import Path
 from ...exporter_format import Dynamics, Joint, Link, Robot, write_package
 from ...parts import Angle, Box, Cylinder, Dimension, Part
 # The wheel, its numbers, the material and the stand are Practice 1's, used from there.
+from ..practice_1 import design as practice_1
 from ..practice_1.design import (ALUMINIUM, BORE_DIAMETER, COLOURS, STAND_HEIGHT, WHEEL_DIAMETER,
                                  WHEEL_WIDTH, mm, wheel)
 
@@ -126,12 +127,7 @@ def _base_dimensions() -> list:
 
 
 # Added to launch/gazebo.launch: Practice 1's pulse node, started from its own package.
-GAZEBO_NODES = """  <node
-    name="periodic_force"
-    pkg="example_1"
-    type="periodic_force_node.py"
-    output="screen" />
-"""
+GAZEBO_NODES = practice_1.GAZEBO_NODES
 
 
 def robot() -> Robot:

@@ -15,7 +15,7 @@ from pathlib import Path
 from ...exporter_format import (ROS_CONTROL_DEPENDS, Joint, Limit, Link, Robot, Safety, Transmission,
                                 ros_control_nodes, write_package)
 from ...parts import Box, Cylinder, Dimension, Material, Part
-from ..shared import mm
+from ..shared import holed_wheel, mm
 
 PACKAGE = "example_5"
 ALUMINIUM = Material("Aluminium 6061-T6", 2700.0)
@@ -96,29 +96,8 @@ KNUCKLE_LIMIT = math.ceil(ackermann(STEER_LIMIT)[0] * 1e4) / 1e4   # 0.6351 rad 
 
 
 def wheel(name: str = "wheel") -> Part:
-    r, w = WHEEL_RADIUS, WHEEL_WIDTH
-    p = HOLE_PITCH_DIAMETER / 2
-    holes = [Cylinder(mm(HOLE_DIAMETER / 2), mm(w + 2), "y", mm(x, 0, z), cut=True)
-             for x, z in ((p, 0), (-p, 0), (0, p), (0, -p))]
-    return Part(
-        name=name,
-        title="Wheel",
-        material=ALUMINIUM,
-        features=[
-            Cylinder(mm(r), mm(w), "y"),
-            Cylinder(mm(BORE_DIAMETER / 2), mm(w + 2), "y", cut=True),
-            *holes,
-        ],
-        dimensions=[
-            Dimension("front", mm(0, 0, -r), mm(0, 0, r), "v", 0.08, f"Ø{WHEEL_DIAMETER}"),
-            Dimension("front", mm(-p, 0, 0), mm(p, 0, 0), "h", -0.085, f"Ø{HOLE_PITCH_DIAMETER} PCD"),
-            Dimension("front", mm(p - HOLE_DIAMETER / 2, 0, 0), mm(p + HOLE_DIAMETER / 2, 0, 0), "h",
-                      0.08, f"4 × Ø{HOLE_DIAMETER} THRU"),
-            Dimension("front", mm(-BORE_DIAMETER / 2, 0, 0), mm(BORE_DIAMETER / 2, 0, 0), "h",
-                      0.095, f"Ø{BORE_DIAMETER} THRU"),
-            Dimension("side", mm(0, -w / 2, 0), mm(0, w / 2, 0), "h", 0.08),
-        ],
-    )
+    return holed_wheel(ALUMINIUM, WHEEL_DIAMETER, WHEEL_WIDTH, BORE_DIAMETER, HOLE_DIAMETER,
+                       HOLE_PITCH_DIAMETER, offsets=(0.08, -0.085, 0.08, 0.095, 0.08), name=name)
 
 
 def _fork(x: float = 0.0, y: float = 0.0, kingpin: bool = True) -> list:
