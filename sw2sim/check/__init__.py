@@ -1,0 +1,45 @@
+"""`sw2sim check`: what is wrong with an exported package, and how to fix it.
+
+    from sw2sim.check import check
+    report = check("path/to/package")        # or a .urdf file
+    print(report.format()); raise SystemExit(report.status)
+
+Each module below registers its rules and adds one check function to CHECKS; they run in
+order on one shared Context. The stability run comes last, and only when nothing so far
+stops MuJoCo from compiling the model.
+"""
+
+from __future__ import annotations
+
+from .context import Context, open_package
+from .findings import ERROR, FATAL, GROUPS, RULES, WARNING, Finding, Report, Rule
+
+__all__ = ["check", "Context", "Finding", "Report", "Rule", "RULES", "GROUPS",
+           "FATAL", "ERROR", "WARNING"]
+
+
+def _checks():
+    # Imported here so that every rule is registered before the first check runs.
+    from . import structure, package_xml, meshes, inertia, joints, collisions
+    return [structure.check, package_xml.check, meshes.check, inertia.check, joints.check,
+            collisions.check]
+
+
+def check(path, *, stability: bool = True) -> Report:
+    """Check a package folder or a .urdf file; never raises on bad input."""
+    ctx = open_package(path)
+    if ctx.usable:
+        for run in _checks():
+            run(ctx)
+        if stability and not any(f.severity in (FATAL, ERROR) for f in ctx.findings):
+            from . import stability as stability_run
+            ctx.report.stability = stability_run.check(ctx)
+    return ctx.report
+
+
+def all_rules() -> dict[str, Rule]:
+    """Every registered rule, in troubleshooting-page order (group, then registration)."""
+    _checks()
+    from . import stability  # noqa: F401  (registers the simulation rules)
+    order = list(GROUPS)
+    return dict(sorted(RULES.items(), key=lambda item: order.index(item[1].group)))

@@ -1,0 +1,200 @@
+"""Open a package for checking: find its URDF, read it safely, and collect findings.
+
+Nothing here raises on bad input. What makes the input unusable (a missing path, an
+unreadable file, XML that is not well-formed or declares entities, a root that is not
+<robot>) becomes a "fatal" finding, and `Context.usable` turns false.
+"""
+
+from __future__ import annotations
+
+import os
+from functools import cached_property
+from pathlib import Path
+
+from lxml import etree
+
+from ..loader import LoadError, Package, find_package
+from .findings import FATAL, RULES, Finding, Report, rule
+
+rule("input-missing", FATAL, "input", "The path does not exist, or holds no URDF",
+     symptom="`sw2sim check` stops at once and names the path.",
+     cause="A typo in the path, or a folder that is not an exported package: the exporter "
+           "keeps the URDF in `urdf/<name>.urdf`.",
+     fix="Give the package folder (the one holding package.xml) or the .urdf file itself.")
+rule("input-unreadable", FATAL, "input", "The URDF cannot be read",
+     symptom="The file exists but cannot be opened, or it is a folder, or it is empty.",
+     cause="File permissions, a broken link, or an export that was interrupted.",
+     fix="Check the file's permissions, or export the package again.")
+rule("xml-syntax", FATAL, "input", "The URDF is not well-formed XML",
+     symptom="MuJoCo and ROS refuse the file with a parser error.",
+     cause="Usually a hand edit: an unclosed tag, a missing quote, `<` or `&` in a value, "
+           "or two root elements.",
+     fix="Open the file at the line given and repair the XML there; `xmllint --noout` "
+         "shows the same position.")
+rule("xml-doctype", FATAL, "input", "The URDF declares a DOCTYPE or entities",
+     symptom="`sw2sim check` refuses the file without reading further.",
+     cause="URDF never needs a DOCTYPE. Entities can expand to gigabytes or read files "
+           "outside the package, so they are not followed.",
+     fix="Delete the <!DOCTYPE ...> block and write the values out in full (use xacro "
+         "properties if you need named values).")
+rule("not-urdf", FATAL, "input", "The XML is not a URDF",
+     symptom="MuJoCo reports that the top-level element is unknown.",
+     cause="A different XML file was given (an SDF world, a MuJoCo MJCF, a launch file), "
+           "or the file is a xacro that was never expanded.",
+     fix="Give the exported .urdf; expand xacro files first with `xacro model.urdf.xacro > model.urdf`.")
+
+# Refuse files larger than this outright: an exported URDF is a few tens of kilobytes.
+MAX_URDF_BYTES = 50_000_000
+
+
+class Context:
+    """One package under check: its files, its parsed URDF, and what was found so far."""
+
+    def __init__(self, path: str | os.PathLike):
+        self.path = Path(path)
+        self.report = Report(path=str(path))
+        self.package: Package | None = None
+        self.robot: etree._Element | None = None
+        self._meshes: dict[Path, object] = {}
+
+    # -- reporting -------------------------------------------------------------------
+    @property
+    def findings(self) -> list[Finding]:
+        return self.report.findings
+
+    @property
+    def usable(self) -> bool:
+        return self.robot is not None and not any(f.severity == FATAL for f in self.findings)
+
+    def add(self, rule_id: str, message: str, *, element=None, line: int | None = None,
+            file: str | os.PathLike | None = None, fix: str | None = None) -> Finding:
+        """Record one finding of a registered rule; the file defaults to the URDF."""
+        known = RULES[rule_id]
+        if file is None and self.package is not None:
+            file = self.package.urdf
+        if line is None and element is not None:
+            line = element.sourceline
+        finding = Finding(rule=rule_id, severity=known.severity, message=message,
+                          fix=fix or known.fix, file=None if file is None else display(file),
+                          line=line)
+        self.findings.append(finding)
+        return finding
+
+    # -- the URDF --------------------------------------------------------------------
+    @cached_property
+    def links(self) -> dict[str, etree._Element]:
+        """Links by name (the first, where a name repeats)."""
+        found: dict[str, etree._Element] = {}
+        for link in self.robot.findall("link"):
+            found.setdefault(link.get("name", ""), link)
+        return found
+
+    @cached_property
+    def joints(self) -> dict[str, etree._Element]:
+        """Joints by name (the first, where a name repeats)."""
+        found: dict[str, etree._Element] = {}
+        for joint in self.robot.findall("joint"):
+            found.setdefault(joint.get("name", ""), joint)
+        return found
+
+    def mesh_file(self, mesh: etree._Element) -> Path | None:
+        """The file a <mesh filename=...> names, if it resolves to a file inside the package."""
+        filename = mesh.get("filename")
+        if not filename or self.package is None:
+            return None
+        try:
+            from ..loader import resolve_mesh
+            return resolve_mesh(self.package, filename, self.package.urdf, mesh.sourceline)
+        except (LoadError, OSError, ValueError):
+            return None
+
+    def mesh(self, mesh: etree._Element):
+        """The mesh a <mesh> element names as a trimesh.Trimesh in metres (scale applied),
+        or None when it cannot be found or read (meshes.check reports why)."""
+        path = self.mesh_file(mesh)
+        if path is None:
+            return None
+        if path not in self._meshes:
+            self._meshes[path] = _read_mesh(path)
+        loaded = self._meshes[path]
+        if loaded is None:
+            return None
+        scale = [float(s) for s in (mesh.get("scale") or "1 1 1").split()]
+        if scale != [1.0, 1.0, 1.0] and len(scale) == 3:
+            loaded = loaded.copy()
+            loaded.apply_scale(scale)
+        return loaded
+
+
+def _read_mesh(path: Path):
+    import trimesh
+    try:
+        loaded = trimesh.load(str(path), force="mesh", process=False)
+    except Exception:  # noqa: BLE001  (any reader failure means "unreadable"; meshes.check says so)
+        return None
+    if not isinstance(loaded, trimesh.Trimesh) or len(loaded.faces) == 0:
+        return None
+    return loaded
+
+
+def display(path: str | os.PathLike) -> str:
+    """A path as the user would type it: relative to the working folder when inside it."""
+    path = Path(path)
+    try:
+        return str(path.resolve().relative_to(Path.cwd().resolve()))
+    except ValueError:
+        return str(path)
+
+
+def open_package(path: str | os.PathLike) -> Context:
+    """A Context for the package at `path`; input problems become fatal findings."""
+    ctx = Context(path)
+    given = Path(path)
+    if not given.exists():
+        ctx.add("input-missing", f"{display(given)} does not exist", file=given,
+                fix="check the path; give the package folder or its .urdf file")
+        return ctx
+    try:
+        ctx.package = find_package(given)
+    except LoadError as exc:
+        rule_id = "xml-syntax" if "well-formed" in exc.message else "input-missing"
+        ctx.add(rule_id, exc.message, file=exc.file, line=exc.line)
+        return ctx
+    urdf = ctx.package.urdf
+    try:
+        if urdf.is_dir():
+            raise IsADirectoryError(urdf)
+        size = urdf.stat().st_size
+        if size > MAX_URDF_BYTES:
+            ctx.add("input-unreadable", f"the URDF is {size / 1e6:.0f} MB; an exported URDF is "
+                    "a few tens of kilobytes", fix="give the exported .urdf, not another file")
+            return ctx
+        raw = urdf.read_bytes()
+    except OSError as exc:
+        ctx.add("input-unreadable", f"cannot read the URDF ({exc.strerror or type(exc).__name__})")
+        return ctx
+    if not raw.strip():
+        ctx.add("input-unreadable", "the URDF is empty", fix="export the package again")
+        return ctx
+    if b"<!DOCTYPE" in raw or b"<!ENTITY" in raw:
+        line = raw[:raw.find(b"<!")].count(b"\n") + 1
+        ctx.add("xml-doctype", "the file declares a DOCTYPE; entities are not expanded", line=line)
+        return ctx
+    try:
+        root = etree.fromstring(raw, _parser())
+    except etree.XMLSyntaxError as exc:
+        ctx.add("xml-syntax", exc.msg, line=exc.lineno or None)
+        return ctx
+    if root is None or root.tag != "robot":
+        tag = "nothing" if root is None else f"<{root.tag}>"
+        ctx.add("not-urdf", f"the top element is {tag}; a URDF starts with <robot name=\"...\">",
+                line=None if root is None else root.sourceline)
+        return ctx
+    ctx.robot = root
+    return ctx
+
+
+def _parser() -> etree.XMLParser:
+    # No entities, no DTD, no network, no huge trees: the file is data, never instructions.
+    return etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False,
+                           huge_tree=False, remove_comments=False)

@@ -1,0 +1,5 @@
+"""Checks of the inertia (to be written)."""
+
+
+def check(ctx) -> None:
+    """Add a finding to ctx for every problem of this group."""
