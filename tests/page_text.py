@@ -3,9 +3,14 @@
 import re
 
 
+def fenced_blocks(text: str, language: str) -> list[str]:
+    """The contents of a page's fences of one language (```xml, ```yaml, ...)."""
+    return re.findall(rf"^[ \t]*```{re.escape(language)}\n(.*?)^[ \t]*```", text, re.S | re.M)
+
+
 def xml_blocks(text: str) -> list[str]:
     """The contents of a page's ```xml fences."""
-    return re.findall(r"```xml\n(.*?)```", text, re.S)
+    return fenced_blocks(text, "xml")
 
 
 def squash(xml: str) -> str:
