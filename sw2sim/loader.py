@@ -67,6 +67,20 @@ def find_package(path: str | os.PathLike) -> Package:
     return Package(root=root.resolve(), name=name, urdf=urdf.resolve())
 
 
+def world_fixed(path: str | os.PathLike) -> bool:
+    """Whether the URDF fixes its root link to a link named `world`.
+
+    That is how a URDF says "bolted down" to Gazebo; without it the model falls free
+    there, even though MuJoCo's URDF import welds a jointless root to the world.
+    """
+    urdf = find_package(path).urdf
+    try:
+        robot = etree.parse(str(urdf), _parser()).getroot()
+    except etree.XMLSyntaxError as exc:
+        raise LoadError(urdf, f"not well-formed XML: {exc.msg}", exc.lineno) from None
+    return any(link.get("name") == "world" for link in robot.findall("link"))
+
+
 def _parser() -> etree.XMLParser:
     # Never expand entities or fetch anything named by the file.
     return etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False, huge_tree=False)
@@ -95,7 +109,8 @@ def resolve_mesh(package: Package, filename: str, urdf: Path, line: int | None) 
     return target
 
 
-def load_package(path: str | os.PathLike, *, fixed_base: bool = True) -> mujoco.MjSpec:
+def load_package(path: str | os.PathLike, *, fixed_base: bool = True,
+                 scene: bool = True) -> mujoco.MjSpec:
     """A MuJoCo model specification of an exported package, ready to compile.
 
     - `package://` mesh paths resolve to files inside the package;
@@ -105,7 +120,9 @@ def load_package(path: str | os.PathLike, *, fixed_base: bool = True) -> mujoco.
     - a floor (at z = 0, or under the model's lowest point if that is lower), a light
       and a camera named "overview" are added;
     - `fixed_base=False` gives the root link a free joint instead, lifted so it rests
-      on the floor.
+      on the floor;
+    - `scene=False` leaves out the floor, the light, the camera and their textures, for a
+      model file of the robot alone (a free base is still lifted to rest on z = 0).
     """
     package = find_package(path)
     urdf = package.urdf
@@ -142,7 +159,7 @@ def load_package(path: str | os.PathLike, *, fixed_base: bool = True) -> mujoco.
         _exclude_static_children(spec)
     else:
         root_body.add_freejoint()
-    _add_scene(spec, urdf, root_body, lift=not fixed_base)
+    _add_scene(spec, urdf, root_body, lift=not fixed_base, dress=scene)
     return spec
 
 
@@ -172,7 +189,8 @@ def _exclude_static_children(spec: mujoco.MjSpec) -> None:
     walk(spec.worldbody, True)
 
 
-def _add_scene(spec: mujoco.MjSpec, urdf: Path, root: mujoco.MjsBody, lift: bool) -> None:
+def _add_scene(spec: mujoco.MjSpec, urdf: Path, root: mujoco.MjsBody, lift: bool,
+               dress: bool = True) -> None:
     try:
         model = spec.compile()
     except ValueError as exc:
@@ -185,6 +203,8 @@ def _add_scene(spec: mujoco.MjSpec, urdf: Path, root: mujoco.MjsBody, lift: bool
         floor_z = 0.0
     else:
         floor_z = min(0.0, low)
+    if not dress:
+        return
 
     tex = spec.add_texture(name="sw2sim_grid", type=mujoco.mjtTexture.mjTEXTURE_2D,
                            builtin=mujoco.mjtBuiltin.mjBUILTIN_CHECKER, width=512, height=512,

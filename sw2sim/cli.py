@@ -1,0 +1,372 @@
+"""The `sw2sim` command: check, convert, view and render an exported package.
+
+Every command takes the package folder (the one holding package.xml) or its .urdf file.
+MuJoCo is imported only inside a command: `view` must choose its GL platform first.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+from pathlib import Path
+
+EXIT_OK, EXIT_ERRORS, EXIT_UNUSABLE = 0, 1, 2
+
+DESCRIPTION = """\
+From a SolidWorks-exported URDF package to a MuJoCo simulation: check the package
+and say how to fix what is wrong, convert it to a MuJoCo model folder, open it in
+MuJoCo's viewer, or save a picture of it.
+
+PATH is the package folder (the one holding package.xml) or its .urdf file.
+Exit status: 0 done (warnings allowed), 1 the package has errors, 2 it cannot be
+used at all (or the command could not run).
+"""
+
+EXAMPLES = """\
+examples:
+  sw2sim check examples/example_4
+  sw2sim check my_robot/urdf/my_robot.urdf --json > report.json
+  sw2sim convert examples/example_4 -o example_4_mujoco
+  sw2sim view examples/example_4
+  sw2sim render examples/example_4 -o example_4.png --azimuth 200
+Run `sw2sim COMMAND --help` for each command's options.
+"""
+
+CHECK_HELP = """\
+Reads the package as ROS, Gazebo and MuJoCo would: the XML, package.xml, the
+meshes, masses and inertias, joints and limits, collisions. Then, unless --no-sim
+is given, it simulates the model for 4 s (2 s at rest, 2 s with small random
+inputs) to catch a model that blows up or flies apart. The base is fixed when the
+URDF joins it to a link named `world`, free otherwise, as in Gazebo.
+
+Each finding is one line:
+  FILE:LINE: SEVERITY [RULE-ID] what is wrong. Fix: what to do
+followed by a summary. Exit status: 0 no errors (warnings allowed), 1 errors,
+2 the input cannot be used (missing path, not XML, not a URDF).
+
+examples:
+  sw2sim check examples/example_4
+  sw2sim check my_robot --no-sim
+  sw2sim check my_robot --json | python -m json.tool
+"""
+
+CONVERT_HELP = """\
+Writes a folder in the layout of the MuJoCo Menagerie's models:
+  NAME.xml    the robot: bodies, joints, meshes, and actuators made from the
+              package's transmissions and controller YAML
+  scene.xml   includes NAME.xml and adds a floor, a light and a sky
+  assets/     the mesh files, copied
+  README.md   what came from where, and what was changed or dropped
+The result needs plain MuJoCo only: python -m mujoco.viewer --mjcf=DIR/scene.xml
+
+The package is checked first (as `sw2sim check`); with errors nothing is written
+and the exit status is 1. An existing non-empty DIR is refused unless --force is
+given; --force replaces only the files convert writes and deletes nothing.
+
+examples:
+  sw2sim convert examples/example_5 -o example_5_mujoco
+  sw2sim convert my_robot -o my_robot_mujoco --force
+"""
+
+VIEW_HELP = """\
+Opens MuJoCo's interactive viewer (it needs a display). Each joint gets a slider
+in the viewer's Control panel: joints with a controller in the package's YAML
+get that controller's actuator (as in `sw2sim convert`), the others a position
+actuator over their limits, or a velocity actuator if they have none.
+
+The package is checked first (without the simulation); findings are printed,
+and the model opens as long as MuJoCo can load it, so you can look at a problem.
+Without a display (a server, a container), use `sw2sim render` instead, or log in
+with `ssh -X` so the window opens on your screen.
+
+examples:
+  sw2sim view examples/example_4
+"""
+
+RENDER_HELP = """\
+Saves a PNG picture of the model at its start pose, drawn off-screen (no display
+needed). The camera looks at the model's centre from AZIMUTH and ELEVATION
+degrees. An existing file is kept unless --force is given.
+
+The package is checked first (without the simulation); findings are printed,
+and the picture is made as long as MuJoCo can load the model.
+
+examples:
+  sw2sim render examples/example_4 -o example_4.png
+  sw2sim render examples/example_5 -o car.png --width 1600 --height 1000 \
+      --azimuth 210 --elevation -15 --shadows
+"""
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Run one command; return its exit status (never raise on bad input)."""
+    parser = _parser()
+    args = parser.parse_args(argv)
+    if args.command is None:
+        parser.print_help()
+        return EXIT_UNUSABLE
+    try:
+        return args.run(args)
+    except KeyboardInterrupt:
+        return 130
+    except Exception as exc:  # noqa: BLE001  (a bug in sw2sim: say so plainly, no traceback)
+        _say(f"sw2sim {args.command}: unexpected error ({type(exc).__name__}: {exc}). "
+             "This is a fault in sw2sim, not necessarily in your package; please report it "
+             "with the command you ran.")
+        return EXIT_UNUSABLE
+
+
+def _parser() -> argparse.ArgumentParser:
+    raw = argparse.RawDescriptionHelpFormatter
+    parser = argparse.ArgumentParser(prog="sw2sim", description=DESCRIPTION, epilog=EXAMPLES,
+                                     formatter_class=raw)
+    parser.add_argument("--version", action="version", version=f"%(prog)s {_version()}")
+    parser.set_defaults(command=None)
+    commands = parser.add_subparsers(title="commands", metavar="COMMAND")
+
+    check = commands.add_parser("check", help="list what is wrong with a package, with fixes",
+                                description=CHECK_HELP, formatter_class=raw)
+    check.add_argument("path", metavar="PATH", help="package folder or .urdf file")
+    check.add_argument("--json", action="store_true", help="print the report as JSON")
+    check.add_argument("--no-sim", action="store_true", help="skip the 4 s stability run")
+    check.set_defaults(command="check", run=_check)
+
+    convert = commands.add_parser("convert", help="write a MuJoCo model folder (robot, scene, "
+                                  "meshes, README)",
+                                  description=CONVERT_HELP, formatter_class=raw)
+    convert.add_argument("path", metavar="PATH", help="package folder or .urdf file")
+    convert.add_argument("-o", "--output", metavar="DIR", required=True,
+                         help="the folder to write (created if missing)")
+    convert.add_argument("--force", action="store_true",
+                         help="write into a non-empty DIR, replacing only convert's own files")
+    convert.set_defaults(command="convert", run=_convert)
+
+    view = commands.add_parser("view", help="open the package in MuJoCo's viewer",
+                               description=VIEW_HELP, formatter_class=raw)
+    view.add_argument("path", metavar="PATH", help="package folder or .urdf file")
+    view.set_defaults(command="view", run=_view)
+
+    render = commands.add_parser("render", help="save a picture of the package (no display "
+                                 "needed)",
+                                 description=RENDER_HELP, formatter_class=raw)
+    render.add_argument("path", metavar="PATH", help="package folder or .urdf file")
+    render.add_argument("-o", "--output", metavar="FILE", required=True, help="the PNG to write")
+    render.add_argument("--width", type=_pixels, default=960, help="pixels (default 960)")
+    render.add_argument("--height", type=_pixels, default=640, help="pixels (default 640)")
+    render.add_argument("--azimuth", type=float, default=135.0,
+                        help="camera direction around the vertical, degrees (default 135)")
+    render.add_argument("--elevation", type=float, default=-25.0,
+                        help="camera height, degrees; negative looks down (default -25)")
+    render.add_argument("--shadows", action="store_true",
+                        help="draw shadows (software rendering can speckle them on large models)")
+    render.add_argument("--force", action="store_true", help="overwrite FILE if it exists")
+    render.set_defaults(command="render", run=_render)
+    return parser
+
+
+def _version() -> str:
+    from importlib.metadata import PackageNotFoundError, version
+    try:
+        return version("sw2sim")
+    except PackageNotFoundError:
+        return "(not installed)"
+
+
+def _pixels(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a whole number of pixels") from None
+    if not 16 <= value <= 4096:
+        raise argparse.ArgumentTypeError(f"{value} is outside 16 to 4096 pixels")
+    return value
+
+
+def _say(message: str) -> None:
+    print(message, file=sys.stderr)
+
+
+# -- check -----------------------------------------------------------------------------
+def _check(args) -> int:
+    from .check import check
+    report = check(args.path, stability=not args.no_sim)
+    print(report.to_json() if args.json else report.format())
+    return report.status
+
+
+# -- convert ---------------------------------------------------------------------------
+def _convert(args) -> int:
+    from .check import check
+    out = Path(args.output)
+    if out.exists() and not out.is_dir():
+        _say(f"sw2sim convert: {out} is a file; give a folder to write the model into.")
+        return EXIT_UNUSABLE
+    if out.is_dir() and any(out.iterdir()) and not args.force:
+        _say(f"sw2sim convert: {out} is not empty, so nothing was written. Choose a new "
+             "folder, or add --force to replace the files convert writes there (other files "
+             "are left alone).")
+        return EXIT_UNUSABLE
+    report = check(args.path)
+    if report.status != EXIT_OK:
+        print(report.format())
+        _say("sw2sim convert: not converted; fix the errors above and run it again.")
+        return report.status
+    if report.findings:
+        print(report.format())
+    from .check.stability import mujoco_warnings
+    from .convert import OutputNotEmpty, convert
+    from .loader import LoadError
+    try:
+        with mujoco_warnings():   # the check has reported them; no MUJOCO_LOG.TXT here
+            result = convert(args.path, out, force=args.force)
+    except LoadError as exc:
+        _say(f"sw2sim convert: {exc}")
+        return EXIT_ERRORS
+    except OutputNotEmpty as exc:
+        _say(f"sw2sim convert: {exc}; nothing was written.")
+        return EXIT_UNUSABLE
+    except OSError as exc:
+        _say(f"sw2sim convert: cannot write into {out}: {exc.strerror or exc}")
+        return EXIT_UNUSABLE
+    meshes = f" and {len(result.meshes)} mesh file(s) in assets/" if result.meshes else ""
+    print(f"wrote {out}: {result.name}.xml, scene.xml, README.md{meshes}; "
+          f"{len(result.actuators)} actuator(s)")
+    print(f"open it with: python -m mujoco.viewer --mjcf={out / 'scene.xml'}")
+    return EXIT_OK
+
+
+# -- view and render -------------------------------------------------------------------
+def _no_display() -> str | None:
+    """Why no window can open here, or None when one can."""
+    if sys.platform == "darwin" or sys.platform.startswith("win"):
+        return None
+    if os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY"):
+        return None
+    return "neither DISPLAY nor WAYLAND_DISPLAY is set, so there is no screen to open a window on"
+
+
+def _display_name() -> str:
+    return os.environ.get("WAYLAND_DISPLAY") or os.environ.get("DISPLAY") or "(default)"
+
+
+def _glfw_starts() -> bool:
+    """Whether GLFW can reach the display. The viewer would otherwise stop the whole
+    process from inside MuJoCo, with no message but "could not initialize GLFW"."""
+    try:
+        import glfw
+    except ImportError:
+        return False
+    reporting, glfw.ERROR_REPORTING = glfw.ERROR_REPORTING, "ignore"
+    try:
+        return bool(glfw.init())
+    finally:
+        glfw.ERROR_REPORTING = reporting
+
+
+def _model(args, *, sliders: bool = False, size: tuple[int, int] | None = None):
+    """The package's model as the viewer or a picture shows it, or an exit status.
+
+    The static check runs first: a package it cannot use stops here; other findings
+    are printed and the model is still loaded, since looking at it is how to find
+    what they mean.
+    """
+    from .check import check
+    from .check.stability import mujoco_warnings
+    from .loader import LoadError
+    report = check(args.path, stability=False)
+    if report.status == EXIT_UNUSABLE:
+        print(report.format())
+        return EXIT_UNUSABLE
+    if report.findings:
+        print(report.format())
+    try:
+        with mujoco_warnings():   # the check has reported them; no MUJOCO_LOG.TXT here
+            return _compiled(args.path, sliders, size)
+    except LoadError as exc:
+        _say(f"sw2sim {args.command}: {exc}")
+        return EXIT_ERRORS
+    except ValueError as exc:
+        message = " ".join(str(exc).split())
+        _say(f"sw2sim {args.command}: MuJoCo cannot compile the model: {message}")
+        return EXIT_ERRORS
+
+
+def _compiled(path: str, sliders: bool, size: tuple[int, int] | None):
+    from .actuators import add_actuators
+    from .loader import LoadError, load_package, world_fixed
+    fixed = world_fixed(path)
+    spec = load_package(path, fixed_base=fixed)
+    if sliders:
+        try:
+            add_actuators(spec, path, sliders=True)
+        except LoadError as exc:
+            print(f"no sliders: {exc}")
+            spec = load_package(path, fixed_base=fixed)
+    if size is not None:
+        spec.visual.global_.offwidth = max(spec.visual.global_.offwidth, size[0])
+        spec.visual.global_.offheight = max(spec.visual.global_.offheight, size[1])
+    return spec.compile()
+
+
+def _view(args) -> int:
+    reason = _no_display()
+    if reason:
+        _say(f"sw2sim view: {reason}. Make a picture instead:\n"
+             f"    sw2sim render {args.path} -o picture.png\n"
+             "or log in with `ssh -X` (or run on a machine with a screen) so the viewer's "
+             "window can open.")
+        return EXIT_UNUSABLE
+    # The viewer draws through GLFW; `import sw2sim` chose an off-screen platform for
+    # pictures, and MuJoCo reads the choice once, when it is first imported.
+    os.environ["MUJOCO_GL"] = "glfw"
+    if not _glfw_starts():
+        _say(f"sw2sim view: no window can open on display {_display_name()}. Check that "
+             "the display works (`xeyes`, say), or make a picture instead:\n"
+             f"    sw2sim render {args.path} -o picture.png")
+        return EXIT_UNUSABLE
+    model = _model(args, sliders=True)
+    if isinstance(model, int):
+        return model
+    try:
+        import mujoco.viewer
+        mujoco.viewer.launch(model)
+    except Exception as exc:  # noqa: BLE001  (GLFW and the display fail in many ways)
+        _say(f"sw2sim view: the viewer could not open a window ({type(exc).__name__}: {exc}). "
+             f"Check that the display works, or make a picture instead: "
+             f"sw2sim render {args.path} -o picture.png")
+        return EXIT_UNUSABLE
+    return EXIT_OK
+
+
+def _render(args) -> int:
+    out = Path(args.output)
+    if out.is_dir():
+        _say(f"sw2sim render: {out} is a folder; give the PNG file to write, "
+             f"e.g. {out / 'picture.png'}")
+        return EXIT_UNUSABLE
+    if out.exists() and not args.force:
+        _say(f"sw2sim render: {out} exists; add --force to overwrite it, or choose another name.")
+        return EXIT_UNUSABLE
+    if not out.parent.is_dir():
+        _say(f"sw2sim render: the folder {out.parent} does not exist; create it first.")
+        return EXIT_UNUSABLE
+    model = _model(args, size=(args.width, args.height))
+    if isinstance(model, int):
+        return model
+    import mujoco
+    from .render import render, save_png
+    try:
+        image = render(model, mujoco.MjData(model), width=args.width, height=args.height,
+                       azimuth=args.azimuth, elevation=args.elevation, shadows=args.shadows)
+    except Exception as exc:  # noqa: BLE001  (no OpenGL here: say how to get one)
+        _say(f"sw2sim render: cannot draw off-screen ({type(exc).__name__}: {exc}). On Debian or "
+             "Ubuntu install libosmesa6 (sudo apt install libosmesa6), or set MUJOCO_GL=egl.")
+        return EXIT_UNUSABLE
+    try:
+        save_png(image, out)
+    except OSError as exc:
+        _say(f"sw2sim render: cannot write {out}: {exc.strerror or exc}")
+        return EXIT_UNUSABLE
+    print(f"wrote {out} ({args.width}x{args.height})")
+    return EXIT_OK
