@@ -7,6 +7,7 @@ unreadable file, XML that is not well-formed or declares entities, a root that i
 
 from __future__ import annotations
 
+import math
 import os
 from functools import cached_property
 from pathlib import Path
@@ -105,7 +106,7 @@ class Context:
         try:
             from ..loader import resolve_mesh
             return resolve_mesh(self.package, filename, self.package.urdf, mesh.sourceline)
-        except (LoadError, OSError, ValueError):
+        except (LoadError, OSError, ValueError, RuntimeError):  # RuntimeError: a symlink loop
             return None
 
     def mesh(self, mesh: etree._Element):
@@ -119,7 +120,12 @@ class Context:
         loaded = self._meshes[path]
         if loaded is None:
             return None
-        scale = [float(s) for s in (mesh.get("scale") or "1 1 1").split()]
+        try:
+            scale = [float(s) for s in (mesh.get("scale") or "1 1 1").split()]
+        except ValueError:
+            scale = [math.nan]
+        if not all(math.isfinite(s) for s in scale):
+            return None  # a malformed scale: structure.py reports it
         if scale != [1.0, 1.0, 1.0] and len(scale) == 3:
             loaded = loaded.copy()
             loaded.apply_scale(scale)

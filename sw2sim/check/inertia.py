@@ -1,5 +1,303 @@
-"""Checks of the inertia (to be written)."""
+"""Checks of each link's mass, centre of mass and inertia tensor.
+
+MuJoCo is stricter than ROS here, and what it refuses is an error: an inertia tensor that
+is not all zeros must have positive principal moments that satisfy A + B >= C, whether
+the link moves or not, and a body that moves must have more mass and inertia than
+mjMINVAL (1e-15), counting the links fixed to it. A link held by the world (or fixed to a
+link that brings the mass) may be massless: it is a frame, not a part. What MuJoCo
+accepts but no real part has (a milligram, a centre of mass outside the part, a density
+no material has) is a warning.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.spatial import ConvexHull, QhullError
+
+from .collisions import Tree
+from .findings import ERROR, WARNING, rule
+from .meshes import closed_solid, link_geometry, origin_matrix
+from .structure import number, source_line
+
+# MuJoCo's smallest mass or principal moment of inertia (mjMINVAL).
+MJMINVAL = 1e-15
+# A moving part lighter than a milligram is not a part: the smallest screws of an assembly
+# weigh tens of milligrams. Such values come from unit slips (grams typed as tonnes) or
+# placeholders such as 1e-9; MuJoCo accepts them down to mjMINVAL, but next to kilogram
+# links they make the mass matrix so ill-conditioned that the link jitters or explodes.
+TINY_MASS = 1e-6
+# A + B >= C is checked with this relative slack, so that rounding in the 15 digits the
+# exporter writes (and in the eigenvalues) is not reported; real violations are far larger.
+TRIANGLE_SLACK = 1e-9
+# Densities outside this range belong to no solid material (the lightest foams are about
+# 10 kg/m^3, osmium, the densest element, 22,600 kg/m^3).
+DENSITY_RANGE = (10.0, 25_000.0)
+INERTIA_TERMS = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
+
+rule("inertial-missing", WARNING, "inertia", "A moving link has no <inertial>",
+     symptom="MuJoCo gives the link a mass computed from its collision geometry as if it were "
+             "water (1000 kg/m^3); Gazebo drops the link and everything fixed to it.",
+     cause="The <inertial> block was deleted by hand, or the link was written by hand "
+           "without one. The exporter writes one for every link.",
+     fix="Add an <inertial> with the part's mass, centre of mass and inertia tensor, from "
+         "SolidWorks' Mass Properties (Tools, Evaluate, Mass Properties), or export again.")
+rule("inertial-incomplete", ERROR, "inertia", "An <inertial> lacks its mass or a term of "
+     "its inertia",
+     symptom="MuJoCo stops with \"missing element: 'mass'\" (or 'inertia') or \"required "
+             "attribute missing\"; ROS reads the missing values as zero.",
+     cause="A hand edit that dropped <mass value>, <inertia>, or one of ixx, ixy, ixz, iyy, "
+           "iyz, izz.",
+     fix="Write all of them: <mass value=\"...\"/> and <inertia ixx ixy ixz iyy iyz izz/>, "
+         "with zeros for the products of inertia of a symmetric part.")
+rule("mass-not-positive", ERROR, "inertia", "A mass is negative, or a moving link weighs "
+     "nothing",
+     symptom="MuJoCo stops with \"mass and inertia of moving bodies must be larger than "
+             "mjMINVAL\"; Gazebo ignores the link or the model flies apart.",
+     cause="A mass override left at zero, a link whose parts are all hidden or suppressed, "
+           "or an <inertial> written by hand with a placeholder value.",
+     fix="Set the mass to the part's real mass (SolidWorks: Mass Properties, or the "
+         "exporter's mass field) and export again.",
+     seen_in=("mujoco#739", "solidworks_urdf_exporter#172"))
+rule("mass-tiny", WARNING, "inertia", "A moving link weighs less than a milligram",
+     symptom="MuJoCo loads the model, but the light link jitters, drifts or makes the "
+             "simulation explode, and small time steps do not help.",
+     cause="A unit slip (grams or tonnes for kilograms) or a placeholder such as 1e-9 left "
+           "in the URDF; no real part of a SolidWorks assembly is that light.",
+     fix="Write the mass in kilograms, as SolidWorks' Mass Properties gives it.",
+     seen_in=("mujoco#739",))
+rule("inertia-not-positive-definite", ERROR, "inertia", "An inertia tensor is not positive "
+     "definite",
+     symptom="MuJoCo stops with \"inertia must have positive eigenvalues\" or \"mass and "
+             "inertia of moving bodies must be larger than mjMINVAL\".",
+     cause="A principal moment of inertia is zero or negative: a sign error in a product of "
+           "inertia, values typed into the wrong attributes, or a point mass (all terms "
+           "zero) on a link that moves.",
+     fix="Copy the tensor again from SolidWorks' Mass Properties, taken at the centre of "
+         "mass and aligned with the output coordinate system (the Lxx ... Lzz values).",
+     seen_in=("mujoco#759", "mujoco#2491"))
+rule("inertia-triangle", ERROR, "inertia", "The principal moments break A + B >= C",
+     symptom="MuJoCo stops with \"inertia must satisfy A + B >= C; use 'balanceinertia' to "
+             "fix\".",
+     cause="No rigid body can have one principal moment larger than the sum of the other "
+           "two; such a tensor comes from values typed by hand, moments taken about a point "
+           "other than the centre of mass, or a tensor for another unit or part.",
+     fix="Copy the tensor again from SolidWorks' Mass Properties at the centre of mass. "
+         "balanceinertia=\"true\" in MuJoCo's <compiler> hides the error by averaging the "
+         "moments, but the link then turns with the wrong inertia.",
+     seen_in=("mujoco#375",))
+rule("com-outside-geometry", WARNING, "inertia", "The centre of mass lies outside the link",
+     symptom="The link leans, tips or swings as if weighted on one side; the model falls "
+             "over where the real machine stands.",
+     cause="The link's mass properties include parts that are not in its mesh (hidden or "
+           "suppressed bodies, or parts of other links), or the inertia of a multi-part link "
+           "was combined without moving it to the link's frame.",
+     fix="Check the link's components in the exporter dialog and SolidWorks' Mass "
+         "Properties of exactly those parts, then export again.",
+     seen_in=("solidworks_urdf_exporter#117", "solidworks_urdf_exporter#101"))
+rule("density-implausible", WARNING, "inertia", "The mass does not fit the mesh's volume",
+     symptom="The link behaves as if made of foam or of something denser than any metal.",
+     cause="The mass was set by hand (or overridden) and does not match the part, or hidden "
+           "parts add mass that the mesh does not show.",
+     fix="Compare the link's mass with its volume in SolidWorks' Mass Properties and set the "
+         "part's material, or correct the mass.",
+     seen_in=("solidworks_urdf_exporter#101", "solidworks_urdf_exporter#164"))
+
+
+@dataclass(frozen=True)
+class Inertial:
+    """A link's <inertial>, with what could be read from it (None where a value is absent or
+    malformed; structure.py reports malformed numbers)."""
+
+    element: object
+    mass: float | None
+    centre: np.ndarray | None      # the centre of mass in the link's frame
+    tensor: np.ndarray | None      # 3 x 3, about the centre of mass, in the link's axes
+    missing: tuple[str, ...]       # what is absent: "<mass>", "<inertia>", "ixy", ...
+
+    @property
+    def spread(self) -> float | None:
+        """The root-mean-square distance of the mass from the centre of mass, in metres."""
+        if self.tensor is None or not self.mass or self.mass <= 0:
+            return None
+        trace = float(np.trace(self.tensor))
+        return math.sqrt(trace / (2 * self.mass)) if trace > 0 else None
+
+
+def inertial_of(link) -> Inertial | None:
+    """The link's first <inertial>, read; None when it has none."""
+    element = link.find("inertial")
+    if element is None:
+        return None
+    missing = []
+    mass_el = element.find("mass")
+    if mass_el is None or mass_el.get("value") is None:
+        missing.append("<mass value>")
+    mass = None if mass_el is None else number(mass_el.get("value"))
+    inertia_el = element.find("inertia")
+    terms = {}
+    if inertia_el is None:
+        missing.append("<inertia>")
+    else:
+        for term in INERTIA_TERMS:
+            if inertia_el.get(term) is None:
+                missing.append(term)
+            terms[term] = number(inertia_el.get(term))
+    pose = origin_matrix(element)
+    tensor = None
+    if pose is not None and terms and None not in terms.values():
+        t = terms
+        local = np.array([[t["ixx"], t["ixy"], t["ixz"]],
+                          [t["ixy"], t["iyy"], t["iyz"]],
+                          [t["ixz"], t["iyz"], t["izz"]]])
+        turn = pose[:3, :3]
+        tensor = turn @ local @ turn.T
+    centre = None if pose is None else pose[:3, 3].copy()
+    return Inertial(element, mass, centre, tensor, tuple(missing))
 
 
 def check(ctx) -> None:
     """Add a finding to ctx for every problem of this group."""
+    tree = Tree(ctx)
+    inertials = {name: inertial_of(link) for name, link in ctx.links.items()}
+    for name, link in ctx.links.items():
+        inertial = inertials[name]
+        # Only a link that heads a moving body must bring mass and inertia to it.
+        mass, inertia = (_body_has(ctx, tree, inertials, name) if tree.moves(name)
+                         else (True, True))
+        if inertial is None:
+            if not mass:
+                ctx.add("mass-not-positive", f'link "{name}" moves (joint '
+                        f'"{tree.joint_name(name)}") but has no <inertial> and no collision '
+                        "geometry for MuJoCo to compute a mass from",
+                        line=source_line(ctx, link))
+            elif tree.moves(name):
+                ctx.add("inertial-missing", f'link "{name}" moves (joint '
+                        f'"{tree.joint_name(name)}") but has no <inertial>' + _fallback(link),
+                        line=source_line(ctx, link))
+            continue
+        if inertial.missing:
+            # Point at <inertia> when all that is missing are some of its terms.
+            whole = {"<mass value>", "<inertia>"} & set(inertial.missing)
+            at = inertial.element if whole else inertial.element.find("inertia")
+            ctx.add("inertial-incomplete", f'link "{name}": the <inertial> has no '
+                    f"{', '.join(inertial.missing)}", line=source_line(ctx, at, None))
+        mass_ok = _mass(ctx, tree, name, inertial, alone=not mass)
+        _tensor(ctx, name, inertial, alone=not inertia)
+        if mass_ok and inertial.centre is not None:
+            _placement(ctx, link, inertial)
+
+
+def _body_has(ctx, tree: Tree, inertials: dict, head: str) -> tuple[bool, bool]:
+    """Whether the rigid body that the moving link `head` starts (it and the links fixed to
+    it) has a mass, and an inertia, that MuJoCo can use."""
+    mass = inertia = False
+    for name in tree.rigid_body(head):
+        inertial = inertials.get(name)
+        if inertial is None:
+            link = ctx.links.get(name)
+            if link is not None and link.find("collision") is not None:
+                return True, True  # MuJoCo computes both from the collision geometry
+            continue
+        mass = mass or (inertial.mass is not None and inertial.mass > MJMINVAL)
+        inertia = inertia or (inertial.tensor is not None and bool(inertial.tensor.any()))
+    return mass, inertia
+
+
+def _fallback(link) -> str:
+    if link.find("collision") is not None:
+        return ("; MuJoCo computes its mass from the collision geometry at 1000 kg/m^3, and "
+                "Gazebo drops the link")
+    return "; its mass comes only from links fixed to it, and Gazebo drops the link"
+
+
+def _mass(ctx, tree: Tree, name: str, inertial: Inertial, alone: bool) -> bool:
+    """Report the mass; True when it is a usable positive mass."""
+    mass = inertial.mass
+    if mass is None:
+        return False
+    line = source_line(ctx, inertial.element.find("mass"), "value")
+    if mass < 0:
+        ctx.add("mass-not-positive", f'link "{name}" has a negative mass, {mass:g} kg',
+                line=line)
+        return False
+    if mass <= MJMINVAL:
+        if alone:
+            ctx.add("mass-not-positive", f'link "{name}" moves (joint '
+                    f'"{tree.joint_name(name)}") but its mass is {mass:g} kg, and no link '
+                    "fixed to it has mass", line=line)
+        return False
+    if mass < TINY_MASS and tree.body(name) is not None:
+        ctx.add("mass-tiny", f'link "{name}" moves but weighs {mass:.3g} kg, less than a '
+                f"milligram ({TINY_MASS:g} kg)", line=line)
+        return False
+    return True
+
+
+def _tensor(ctx, name: str, inertial: Inertial, alone: bool) -> None:
+    """Report an inertia tensor MuJoCo refuses."""
+    tensor = inertial.tensor
+    if tensor is None:
+        return
+    line = source_line(ctx, inertial.element.find("inertia"), None)
+    if not tensor.any():
+        if alone:
+            ctx.add("inertia-not-positive-definite", f'link "{name}" moves but all six terms '
+                    "of its inertia are zero, and no link fixed to it has inertia", line=line,
+                    fix="write the part's inertia tensor from SolidWorks' Mass Properties; "
+                        "for a small part, that of a solid box of its size will do")
+        return
+    a, b, c = (float(m) for m in np.linalg.eigvalsh(tensor))
+    shown = f"{a:.4g}, {b:.4g}, {c:.4g} kg m^2"
+    if a <= MJMINVAL:
+        ctx.add("inertia-not-positive-definite", f'link "{name}": the principal moments of '
+                f"its inertia are {shown}; all three must be positive", line=line)
+    elif a + b < c * (1 - TRIANGLE_SLACK):
+        ctx.add("inertia-triangle", f'link "{name}": the principal moments of its inertia are '
+                f"{shown}, and {a:.4g} + {b:.4g} = {a + b:.4g} is less than {c:.4g}", line=line)
+
+
+def _placement(ctx, link, inertial: Inertial) -> None:
+    """The centre of mass against the link's geometry, and the mass against its volume."""
+    name = link.get("name", "")
+    for kind in ("collision", "visual"):
+        pieces = link_geometry(ctx, link, kind)
+        if pieces:
+            break
+    else:
+        return
+    points = np.vstack([p.mesh.vertices for p in pieces])
+    outside = _distance_outside(points, inertial.centre)
+    size = float(np.linalg.norm(np.ptp(points, axis=0)))
+    margin = max(0.001, 0.05 * size)
+    if outside > margin:
+        x, y, z = inertial.centre
+        origin = inertial.element.find("origin")
+        ctx.add("com-outside-geometry", f'link "{name}": the centre of mass ({x:.4g}, {y:.4g}, '
+                f"{z:.4g}) m lies {outside * 1000:.0f} mm outside its {kind} geometry, which is "
+                f"{size * 1000:.0f} mm across",
+                line=source_line(ctx, origin if origin is not None else inertial.element,
+                                 "xyz" if origin is not None else None))
+    solids = [closed_solid(p) for p in pieces]
+    if None not in solids:
+        volume = sum(solid.volume() for solid in solids)
+        density = inertial.mass / volume if volume > 0 else None
+        low, high = DENSITY_RANGE
+        if density is not None and not low <= density <= high:
+            ctx.add("density-implausible", f'link "{name}": {inertial.mass:.4g} kg in '
+                    f"{volume * 1e6:.4g} cm^3 of closed {kind} geometry makes {density:,.0f} "
+                    f"kg/m^3 (aluminium: 2,700, steel: 7,850)",
+                    line=source_line(ctx, inertial.element.find("mass"), "value"))
+
+
+def _distance_outside(points: np.ndarray, centre: np.ndarray) -> float:
+    """How far `centre` lies outside the convex hull of `points` (0 inside): the height above
+    the farthest face plane, exact near a face and a little short near an edge or corner."""
+    try:
+        planes = ConvexHull(points).equations  # outward normal n and offset d: n.x + d <= 0
+        return max(0.0, float((planes[:, :3] @ centre + planes[:, 3]).max()))
+    except (QhullError, ValueError):  # flat or degenerate points: use the bounding box
+        low, high = points.min(axis=0), points.max(axis=0)
+        return float(np.linalg.norm(np.maximum(0, np.maximum(low - centre, centre - high))))

@@ -1,5 +1,533 @@
-"""Checks of the meshes (to be written)."""
+"""Checks of the mesh files a URDF names: that each is found inside the package, that MuJoCo
+can read it, and that it is in metres.
+
+A mesh path never leads to reading a file outside the package: `Context.mesh_file` resolves
+symbolic links and `..` before anything is opened, and a path that ends up outside is only
+reported. Problems of a file's content are reported once per file, at the first <mesh> that
+names it, however many links or elements use it.
+
+The helpers at the end give each link's visual or collision geometry as triangle meshes in
+the link's frame; the inertia and collision checks build on them.
+"""
+
+from __future__ import annotations
+
+import os
+import weakref
+from dataclasses import dataclass
+from pathlib import Path
+
+import manifold3d
+import numpy as np
+import trimesh
+from trimesh.transformations import euler_matrix
+
+from .context import display
+from .findings import ERROR, WARNING, rule
+from .structure import number, owner, source_line, vector
+
+# MuJoCo 4 decodes binary STL, OBJ and its own MSH; anything else stops the compile with
+# "no decoder found for mesh file".
+MUJOCO_FORMATS = (".stl", ".obj", ".msh")
+# MuJoCo's STL decoder refuses files with more triangles than this (mujoco#327).
+STL_FACE_LIMIT = 200_000
+# A collision mesh with more triangles than this is worth simplifying: MuJoCo collides its
+# convex hull anyway, so the detail only costs compile time (a 300,000-face mesh takes
+# seconds), and in Gazebo every triangle costs time at every step. A coarse SolidWorks
+# export of a single part stays well below it.
+HEAVY_FACES = 20_000
+# Thinner than this fraction of its size, a mesh is flat: MuJoCo cannot build its hull.
+FLAT = 1e-6
+# Geometry placed farther out than this (in metres) is not measured: such numbers are
+# typos, and hulls and mesh booleans lose their precision there.
+FAR = 1e5
+
+rule("mesh-no-filename", ERROR, "mesh", "A <mesh> has no filename",
+     symptom="MuJoCo stops with an error about the mesh; ROS refuses the URDF.",
+     cause="A hand edit that left <mesh/> empty or misspelt the attribute (it is `filename`).",
+     fix="Write the mesh's path as the exporter does: "
+         "<mesh filename=\"package://<package>/meshes/<link>.STL\"/>.")
+rule("mesh-outside-package", ERROR, "mesh", "A mesh path leads outside the package folder",
+     symptom="The model loads on one computer only, or not at all once the package is copied; "
+             "`sw2sim check` does not open the file.",
+     cause="A path with `../`, an absolute path or a file:// URL, or a symbolic link inside "
+           "meshes/ that points elsewhere. A package must carry its own meshes.",
+     fix="Copy the mesh into the package's meshes/ folder and name it as "
+         "package://<package>/meshes/<file>.")
+rule("mesh-not-found", ERROR, "mesh", "A mesh file does not exist",
+     symptom="MuJoCo stops with \"resource not found\" or \"Error opening file\"; RViz and "
+             "Gazebo show the link without its shape.",
+     cause="The mesh was not exported (the exporter skips some sub-assemblies and imported "
+           "bodies), was renamed or deleted, or the path has a typo; package:// paths resolve "
+           "against the folder that holds package.xml.",
+     fix="Export the assembly again with its meshes, or correct the path so it names a file "
+         "in the package's meshes/ folder.",
+     seen_in=("solidworks_urdf_exporter#89", "solidworks_urdf_exporter#126", "mujoco#1432"))
+rule("mesh-format", ERROR, "mesh", "MuJoCo cannot read this mesh format",
+     symptom="MuJoCo stops with \"no decoder found for mesh file\".",
+     cause="MuJoCo reads STL, OBJ and its own MSH files only; COLLADA (.dae), PLY, glTF and "
+           "the like, which RViz and Gazebo accept, are not among them.",
+     fix="Convert the mesh to binary STL or OBJ (MeshLab, Blender, or "
+         "`trimesh.load(path).export(\"part.stl\")`) and point the URDF at the new file.")
+rule("mesh-ascii-stl", ERROR, "mesh", "The STL file is text (ASCII), not binary",
+     symptom="MuJoCo stops with \"number of faces should be between 1 and 200000 in STL "
+             "file ...; perhaps this is an ASCII file?\".",
+     cause="The file was saved as ASCII STL; MuJoCo's STL reader takes binary STL only. The "
+           "exporter writes binary STL, so this comes from a mesh saved by hand.",
+     fix="Save the part as binary STL (SolidWorks: Save As, STL, Options, Output as Binary), "
+         "or convert it: `trimesh.load(path).export(path)` writes binary STL.")
+rule("mesh-empty", ERROR, "mesh", "The mesh file holds no triangles",
+     symptom="MuJoCo stops with \"invalid header\", \"STL file ... is empty\" or \"number of "
+             "faces should be between 1 and 200000\"; RViz shows nothing for the link.",
+     cause="The exporter sometimes writes an 80-byte STL, a header without a single triangle, "
+           "for parts it could not tessellate: sub-assemblies, imported or hidden bodies.",
+     fix="Make the part's bodies visible and export again; if it stays empty, save the part "
+         "as STL from SolidWorks yourself (File, Save As, STL) into meshes/.",
+     seen_in=("solidworks_urdf_exporter#88", "solidworks_urdf_exporter#89",
+              "solidworks_urdf_exporter#126"))
+rule("mesh-unreadable", ERROR, "mesh", "The mesh file is corrupt",
+     symptom="MuJoCo stops with \"STL file ... has wrong size\", \"vertex coordinate ... is "
+             "not finite\" or a parser error.",
+     cause="A copy or download that was cut short, a file that is not a mesh at all under a "
+           "mesh's name, or a writer that put NaN into the coordinates.",
+     fix="Export the mesh again (or copy it again from where it was exported).")
+rule("mesh-flat", ERROR, "mesh", "The mesh is flat",
+     symptom="MuJoCo stops with \"mesh ... has coplanar vertices, cannot compute convex hull\" "
+             "or \"at least 4 vertices required\".",
+     cause="All of the mesh's points lie in one plane: a sketch, a surface body or a single "
+           "face was exported instead of a solid.",
+     fix="Export the solid body; for a plate give it its real thickness, or use a thin <box> "
+         "as the collision geometry.",
+     seen_in=("mujoco#759",))
+rule("mesh-too-many-faces", ERROR, "mesh", "The STL mesh has more than 200,000 triangles",
+     symptom="MuJoCo stops with \"number of faces should be between 1 and 200000 in STL "
+             "file\".",
+     cause="The part was exported at fine quality, or it has many small features (threads, "
+           "knurls, fillets, text) that each become hundreds of triangles.",
+     fix="Export with coarse quality (the exporter's mesh options, or SolidWorks' STL "
+         "options), suppress cosmetic features before export, or decimate the mesh "
+         "(MeshLab: Quadric Edge Collapse Decimation).",
+     seen_in=("mujoco#327",))
+rule("mesh-units", WARNING, "mesh", "The mesh looks as if it were in millimetres",
+     symptom="The link shows up a thousand times too large; it fills the whole view, and "
+             "contacts or the camera are far off.",
+     cause="The STL was saved with SolidWorks' default unit, millimetres, instead of being "
+           "written by the exporter (which writes metres), or copied from another tool. URDF "
+           "lengths are metres.",
+     fix="Save the STL in metres (SolidWorks: STL options, Unit: Meters), or add "
+         "scale=\"0.001 0.001 0.001\" to the <mesh>.")
+rule("mesh-heavy-collision", WARNING, "mesh", "The collision geometry is the full visual mesh",
+     symptom="MuJoCo takes long to compile the model; Gazebo runs far slower than real time.",
+     cause="The exporter writes the same mesh for <visual> and <collision>; a detailed part "
+           "gives a collision mesh of tens of thousands of triangles.",
+     fix="Use a simpler collision shape: a <box>, <cylinder> or <sphere> around the part, or "
+         "a coarse or decimated copy of the mesh in meshes/ for <collision> only.",
+     seen_in=("solidworks_urdf_exporter#133",))
 
 
 def check(ctx) -> None:
     """Add a finding to ctx for every problem of this group."""
+    found: dict[Path, list] = {}
+    unresolved: dict[str, list] = {}
+    for mesh in _mesh_elements(ctx):
+        filename = (mesh.get("filename") or "").strip()
+        if not filename:
+            ctx.add("mesh-no-filename", f"{_role(mesh)}: the <mesh> has no filename",
+                    line=source_line(ctx, mesh, "filename"))
+            continue
+        path = ctx.mesh_file(mesh)
+        if path is None:
+            unresolved.setdefault(filename, []).append(mesh)
+        else:
+            found.setdefault(path, []).append(mesh)
+    for filename, meshes in unresolved.items():
+        _unresolved(ctx, filename, meshes)
+    readable = {path for path, meshes in found.items() if _file(ctx, path, meshes)}
+    for link in ctx.robot.findall("link"):
+        _units(ctx, link, readable)
+        _heavy_collision(ctx, link, readable)
+
+
+def _mesh_elements(ctx):
+    """Every <mesh> of every link, in file order."""
+    for link in ctx.robot.findall("link"):
+        yield from _link_meshes(link)
+
+
+def _link_meshes(link):
+    """The <mesh> elements of a link's <visual> and <collision> elements, in file order."""
+    for element in link:
+        if element.tag in ("visual", "collision"):
+            yield from element.findall("geometry/mesh")
+
+
+def _role(mesh) -> str:
+    """'collision of link "x"', for messages."""
+    kind = mesh.getparent().getparent().tag
+    return f"{kind} of {owner(mesh)}"
+
+
+def _also(ctx, meshes) -> str:
+    """' (also named at lines 12, 40)' when more than one <mesh> names the same file."""
+    lines = [str(source_line(ctx, m, "filename")) for m in meshes[1:]]
+    return f" (also named at line{'s' if len(lines) > 1 else ''} {', '.join(lines)})" \
+        if lines else ""
+
+
+# -- paths -----------------------------------------------------------------------------
+
+def _unresolved(ctx, filename: str, meshes) -> None:
+    """Say why a mesh path does not lead to a file in the package (once per path)."""
+    package = ctx.package
+    first = meshes[0]
+    line = source_line(ctx, first, "filename")
+    named = f'{_role(first)}: mesh "{filename}"'
+    if filename.startswith("package://"):
+        name, _, rest = filename[len("package://"):].partition("/")
+        if name != package.name:
+            return  # package-name-mismatch (package_xml.py) reports the wrong name
+        target = package.root / rest
+    elif filename.startswith("file://"):
+        target = Path(filename[len("file://"):])
+    else:
+        target = package.urdf.parent / filename
+    lexical = Path(os.path.normpath(target))
+    try:
+        resolved = target.resolve()
+    except (OSError, RuntimeError):  # a symbolic link loop, a name too long
+        ctx.add("mesh-not-found", f"{named} cannot be followed to a file (a loop of "
+                f"symbolic links, or a name too long){_also(ctx, meshes)}", line=line)
+        return
+    if not _inside(resolved, package.root):
+        how = (f"through a symbolic link to {resolved}" if _inside(lexical, package.root)
+               else f"to {resolved}")
+        ctx.add("mesh-outside-package", f"{named} leads {how}, outside the package folder "
+                f"{display(package.root)}; the file was not opened{_also(ctx, meshes)}",
+                line=line)
+        return
+    try:
+        exists = resolved.exists()
+    except OSError:  # a name too long for the file system
+        exists = False
+    if exists:
+        ctx.add("mesh-not-found", f"{named} is not a regular file ({display(resolved)})"
+                f"{_also(ctx, meshes)}", line=line)
+        return
+    hint = ""
+    if filename.startswith("package://"):
+        hint = (f"; package://{package.name}/ stands for the package folder "
+                f"{display(package.root)}")
+    elif not filename.startswith("file://"):
+        hint = "; a relative path starts at the URDF's folder"
+    ctx.add("mesh-not-found", f"{named} not found: looked for {display(resolved)}{hint}"
+            f"{_also(ctx, meshes)}", line=line)
+
+
+def _inside(path: Path, root: Path) -> bool:
+    return root in path.parents
+
+
+# -- file contents ----------------------------------------------------------------------
+
+def _file(ctx, path: Path, meshes) -> bool:
+    """Check one mesh file (named by `meshes`); True when its geometry is usable."""
+    first = meshes[0]
+    line = source_line(ctx, first, "filename")
+    named = f'{_role(first)}: {display(path)}'
+    also = _also(ctx, meshes)
+    suffix = path.suffix.lower()
+    if suffix not in MUJOCO_FORMATS:
+        kind = f'a "{suffix}" file' if suffix else "a file without an extension"
+        ctx.add("mesh-format", f"{named} is {kind}; MuJoCo reads .stl, .obj and .msh "
+                f"only{also}", line=line)
+    if suffix == ".msh":
+        return False  # MuJoCo's own format: nothing here reads it
+    if suffix == ".stl":
+        problem = _stl_problem(path)
+        if problem:
+            rule_id, message = problem
+            ctx.add(rule_id, f"{named} {message}{also}", line=line)
+            if rule_id in ("mesh-empty", "mesh-unreadable"):
+                return False
+    scaled = [m for m in meshes if _scale_ok(m)]
+    if not scaled:
+        return False  # every <mesh> naming it has a malformed scale: structure.py says so
+    mesh = ctx.mesh(scaled[0])
+    if mesh is None:
+        if suffix == ".obj" and not _obj_has_faces(path):
+            ctx.add("mesh-empty", f"{named} has no faces (no \"f\" lines){also}", line=line)
+        else:
+            ctx.add("mesh-unreadable", f"{named} cannot be read as a mesh{also}", line=line)
+        return False
+    bad = int(np.count_nonzero(~np.isfinite(mesh.vertices)))
+    if bad:
+        ctx.add("mesh-unreadable", f"{named} has {bad} vertex coordinates that are not finite "
+                f"numbers (NaN or infinity){also}", line=line)
+        return False
+    flat = _flatness(mesh.vertices)
+    if flat:
+        ctx.add("mesh-flat", f"{named} {flat}{also}", line=line)
+        return False
+    return True
+
+
+def _scale_ok(mesh) -> bool:
+    text = mesh.get("scale")
+    return text is None or vector(text, 3) is not None
+
+
+def _stl_problem(path: Path) -> tuple[str, str] | None:
+    """(rule id, message) for an STL file MuJoCo would refuse, from its size and header."""
+    try:
+        size = path.stat().st_size
+        with path.open("rb") as stream:
+            head = stream.read(84)
+    except OSError as exc:
+        return "mesh-unreadable", f"cannot be read ({exc.strerror or type(exc).__name__})"
+    if size == 0:
+        return "mesh-empty", "is empty (0 bytes)"
+    if size >= 84:
+        count = int.from_bytes(head[80:84], "little")
+        if size == 84 + 50 * count:
+            if count == 0:
+                return "mesh-empty", "is a binary STL header that announces no triangles"
+            if count > STL_FACE_LIMIT:
+                return ("mesh-too-many-faces", f"has {count:,} triangles; MuJoCo reads at most "
+                        f"{STL_FACE_LIMIT:,}")
+            return None
+    if size < 84:
+        return "mesh-empty", f"holds only {size} bytes: an STL header and no triangles"
+    if head.lstrip()[:5].lower() == b"solid" and _text(path):
+        facets = _count(path, b"endfacet")
+        if facets == 0:
+            return "mesh-empty", "is a text (ASCII) STL without a single facet"
+        return "mesh-ascii-stl", f"is a text (ASCII) STL with {facets:,} facets"
+    return ("mesh-unreadable", f"is {size:,} bytes long, but its binary STL header announces "
+            f"{count:,} triangles, which take {84 + 50 * count:,} bytes (a cut-short copy, "
+            "or not an STL file)")
+
+
+def _text(path: Path) -> bool:
+    """Whether the file starts as text does. A binary STL's 80-byte header may say "solid"
+    too (SolidWorks writes one so), but the triangles after it are not text."""
+    with path.open("rb") as stream:
+        start = stream.read(1024)
+    return not start.translate(None, _TEXT_BYTES)
+
+
+_TEXT_BYTES = bytes(range(32, 127)) + b"\t\n\r\f\v"
+
+
+def _count(path: Path, token: bytes) -> int:
+    """How often `token` occurs in a file, read in blocks."""
+    total, tail = 0, b""
+    with path.open("rb") as stream:
+        while block := stream.read(1 << 20):
+            data = tail + block
+            total += data.count(token)
+            tail = data[-(len(token) - 1):]
+    return total
+
+
+def _obj_has_faces(path: Path) -> bool:
+    try:
+        with path.open("rb") as stream:
+            return any(line.lstrip().startswith(b"f ") for line in stream)
+    except OSError:
+        return True
+
+
+def _flatness(vertices: np.ndarray) -> str | None:
+    """Why MuJoCo cannot build a hull from these points, or None when it can."""
+    if len(vertices) < 4:
+        return f"has only {len(vertices)} vertices; MuJoCo needs at least 4"
+    spread = np.linalg.svd(vertices - vertices.mean(axis=0), compute_uv=False)
+    if spread[2] <= FLAT * spread[0]:
+        return "is flat: all its vertices lie in one plane (or on one line or point)"
+    return None
+
+
+# -- units and weight --------------------------------------------------------------------
+
+def millimetre_suspect(link, mesh: trimesh.Trimesh) -> str | None:
+    """Why `mesh` (in metres as the URDF scales it) looks like millimetres, or None.
+
+    A link's inertia says how far its mass lies from its centre: with mass m and moments
+    Ixx, Iyy, Izz about the centre of mass, r = sqrt((Ixx + Iyy + Izz) / (2 m)) is the
+    root-mean-square distance of the mass from the centre. A mesh that holds that mass is
+    a few times r across: its bounding-box diagonal d is 3 to 6 r for solids, plates and
+    rods, and rarely above 50 r even for a heavy core with a long light arm. A mesh in
+    millimetres is read 1000 times too large, so d / r lands near 1000 times those values.
+    The warning needs d / 1000 to agree with r again (0.3 r to 60 r): a mesh that is merely
+    odd, or an inertia that is itself wrong, does not pass for millimetres. A link without
+    a usable inertia is judged by size alone: over 10 m across.
+    """
+    from .inertia import inertial_of  # inertia.py builds on this module
+
+    if len(mesh.vertices) == 0:
+        return None
+    diagonal = float(np.linalg.norm(mesh.extents))
+    inertial = inertial_of(link)
+    spread = None if inertial is None else inertial.spread
+    if spread:
+        ratio = diagonal / spread
+        if 300 <= ratio <= 60_000:
+            return (f"it is {diagonal:.3g} m across, while the link's inertia puts its mass "
+                    f"within about {spread:.3g} m of the centre of mass ({ratio:.0f} times less)")
+        return None
+    if diagonal > 10:
+        return f"it is {diagonal:.3g} m across"
+    return None
+
+
+def _units(ctx, link, readable: set) -> None:
+    seen = set()
+    for mesh_el in _link_meshes(link):
+        path = ctx.mesh_file(mesh_el)
+        if path not in readable or path in seen:
+            continue
+        seen.add(path)
+        mesh = ctx.mesh(mesh_el)
+        why = None if mesh is None else millimetre_suspect(link, mesh)
+        if why:
+            ctx.add("mesh-units", f"{_role(mesh_el)}: {display(path)} looks like millimetres: "
+                    f"{why}", line=source_line(ctx, mesh_el, "filename"))
+
+
+def _heavy_collision(ctx, link, readable: set) -> None:
+    visual = {ctx.mesh_file(m) for m in link.findall("visual/geometry/mesh")}
+    seen = set()
+    for mesh_el in link.findall("collision/geometry/mesh"):
+        path = ctx.mesh_file(mesh_el)
+        if path not in readable or path not in visual or path in seen:
+            continue
+        seen.add(path)
+        mesh = ctx.mesh(mesh_el)
+        if mesh is None or len(mesh.faces) <= HEAVY_FACES:
+            continue
+        if path.suffix.lower() != ".stl" or len(mesh.faces) <= STL_FACE_LIMIT:  # else an error
+            ctx.add("mesh-heavy-collision", f"{_role(mesh_el)}: the collision geometry is the "
+                    f"visual mesh {display(path)}, {len(mesh.faces):,} triangles (more than "
+                    f"{HEAVY_FACES:,})", line=source_line(ctx, mesh_el, "filename"))
+
+
+# -- geometry for the other checks -------------------------------------------------------
+
+@dataclass(frozen=True)
+class Piece:
+    """One <visual> or <collision> of a link, as a triangle mesh in the link's frame."""
+
+    element: object             # the <visual> or <collision> element
+    shape: object               # its <mesh>, <box>, <cylinder> or <sphere>
+    mesh: trimesh.Trimesh       # metres, link frame, vertices merged; its own copy
+    pose: np.ndarray            # the element's <origin>: where `local` sits in the link
+    local: trimesh.Trimesh      # the shape in its own frame, shared: never change it
+
+
+def link_geometry(ctx, link, kind: str = "collision") -> list[Piece] | None:
+    """The link's <visual> or <collision> geometry in its frame; [] when it has none, and
+    None when some of it cannot be known (a missing or unreadable mesh, a malformed origin
+    or size, a mesh that looks like millimetres or has more triangles than MuJoCo reads):
+    then checks that need all of it skip."""
+    pieces = []
+    for element in link.findall(kind):
+        geometry = element.find("geometry")
+        shape = None if geometry is None else next(
+            (s for s in geometry if s.tag in ("mesh", "box", "cylinder", "sphere")), None)
+        pose = origin_matrix(element)
+        local = None if shape is None else _shape_mesh(ctx, link, shape)
+        if local is None or pose is None:
+            return None
+        mesh = local.copy()
+        mesh.apply_transform(pose)
+        if not np.all(np.abs(mesh.vertices) < FAR):
+            return None
+        pieces.append(Piece(element, shape, mesh, pose, local))
+    return pieces
+
+
+def origin_matrix(element) -> np.ndarray | None:
+    """The 4 x 4 pose given by an element's <origin> (identity without one); None when a
+    number in it is malformed (structure.py reports that)."""
+    origin = element.find("origin")
+    if origin is None:
+        return np.eye(4)
+    xyz = vector(origin.get("xyz", "0 0 0"), 3)
+    rpy = vector(origin.get("rpy", "0 0 0"), 3)
+    if xyz is None or rpy is None:
+        return None
+    pose = euler_matrix(*rpy, "sxyz")  # URDF: roll about x, then pitch about y, then yaw about z
+    pose[:3, 3] = xyz
+    return pose
+
+
+# Each context's meshes with their vertices merged (the context reads them unmerged), by
+# file and scale: closed meshes are then recognised as closed, and merging is done once.
+_merged: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+
+
+def _shape_mesh(ctx, link, shape) -> trimesh.Trimesh | None:
+    """The shape as a mesh in its own frame (shared: copy it before changing it)."""
+    if shape.tag == "mesh":
+        cache = _merged.setdefault(ctx, {})
+        key = (ctx.mesh_file(shape), shape.get("scale"))
+        if key not in cache:
+            mesh = ctx.mesh(shape)
+            if mesh is not None and np.isfinite(mesh.vertices).all():
+                mesh = mesh.copy()
+                mesh.merge_vertices()
+            else:
+                mesh = None
+            cache[key] = mesh
+        mesh = cache[key]
+        # Beyond MuJoCo's STL limit the model does not load, and measuring would take seconds.
+        if mesh is None or len(mesh.faces) > STL_FACE_LIMIT or millimetre_suspect(link, mesh):
+            return None
+        return mesh
+    if shape.tag == "box":
+        size = vector(shape.get("size"), 3)
+        return trimesh.creation.box(extents=size) if size and _sizes_ok(*size) else None
+    radius = number(shape.get("radius"))
+    if shape.tag == "sphere":
+        return trimesh.creation.icosphere(subdivisions=3, radius=radius) \
+            if _sizes_ok(radius) else None
+    length = number(shape.get("length"))
+    if not _sizes_ok(radius, length):
+        return None
+    return trimesh.creation.cylinder(radius=radius, height=length, sections=48)
+
+
+def _sizes_ok(*sizes) -> bool:
+    """Whether every size of a primitive is one this check can mesh: above a nanometre, below
+    FAR (smaller or larger ones are typos that other rules or MuJoCo report)."""
+    return all(size is not None and 1e-9 < size < FAR for size in sizes)
+
+
+# Each shared shape mesh as a closed solid (or False), so that a file is built once.
+_solids: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+
+
+def closed_solid(piece: Piece, pose: np.ndarray | None = None) -> manifold3d.Manifold | None:
+    """The piece as a closed solid, in the link's frame or moved on by `pose`; None when
+    its mesh is not closed."""
+    if piece.local not in _solids:
+        _solids[piece.local] = _as_solid(piece.local) or False
+    solid = _solids[piece.local]
+    if not solid:
+        return None
+    place = piece.pose if pose is None else pose @ piece.pose
+    return solid.transform(place[:3, :4])
+
+
+def _as_solid(mesh: trimesh.Trimesh) -> manifold3d.Manifold | None:
+    """The mesh as a manifold3d solid when it is closed, without self-contradicting edges,
+    and outward-facing (positive volume); None for an open, inverted or broken mesh."""
+    try:
+        solid = manifold3d.Manifold(manifold3d.Mesh64(
+            vert_properties=np.asarray(mesh.vertices, dtype=np.float64),
+            tri_verts=np.asarray(mesh.faces, dtype=np.uint64)))
+    except Exception:  # noqa: BLE001  (manifold3d refuses malformed arrays)
+        return None
+    if solid.status() != manifold3d.Error.NoError or solid.volume() <= 0:
+        return None
+    return solid
