@@ -170,6 +170,11 @@ def open_package(path: str | os.PathLike) -> Context:
     try:
         if urdf.is_dir():
             raise IsADirectoryError(urdf)
+        if urdf.exists() and not urdf.is_file():
+            # A named pipe or a device: reading it could wait for ever.
+            ctx.add("input-unreadable", "the URDF is not a regular file (a pipe or a device)",
+                    fix="give the exported .urdf file itself")
+            return ctx
         size = urdf.stat().st_size
         if size > MAX_URDF_BYTES:
             ctx.add("input-unreadable", f"the URDF is {size / 1e6:.0f} MB; an exported URDF is "
@@ -190,6 +195,10 @@ def open_package(path: str | os.PathLike) -> Context:
         root = etree.fromstring(raw, _parser())
     except etree.XMLSyntaxError as exc:
         ctx.add("xml-syntax", exc.msg, line=exc.lineno or None)
+        return ctx
+    if root is not None and root.getroottree().docinfo.doctype:
+        # The byte test above cannot see a DOCTYPE in UTF-16 or UTF-32.
+        ctx.add("xml-doctype", "the file declares a DOCTYPE; entities are not expanded")
         return ctx
     if root is None or root.tag != "robot":
         tag = "nothing" if root is None else f"<{root.tag}>"
