@@ -56,6 +56,9 @@ def find_package(path: str | os.PathLike) -> Package:
         root = path.parent.parent if path.parent.name == "urdf" else path.parent
     name = root.name
     manifest = root / "package.xml"
+    if manifest.is_symlink() and root.resolve() not in manifest.resolve().parents:
+        raise LoadError(manifest, "package.xml is a link to a file outside the package; "
+                        "copy the file into the package instead")
     if manifest.is_file():
         try:
             tree = etree.parse(str(manifest), _parser())

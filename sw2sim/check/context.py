@@ -163,8 +163,13 @@ def open_package(path: str | os.PathLike) -> Context:
     try:
         ctx.package = find_package(given)
     except LoadError as exc:
-        rule_id = "xml-syntax" if "well-formed" in exc.message else "input-missing"
-        ctx.add(rule_id, exc.message, file=exc.file, line=exc.line)
+        if "well-formed" in exc.message:
+            ctx.add("xml-syntax", exc.message, file=exc.file, line=exc.line)
+        elif "outside the package" in exc.message:
+            problem, _, fix = exc.message.partition("; ")
+            ctx.add("input-unreadable", problem, file=exc.file, fix=fix or None)
+        else:
+            ctx.add("input-missing", exc.message, file=exc.file, line=exc.line)
         return ctx
     urdf = ctx.package.urdf
     try:

@@ -279,3 +279,13 @@ def test_a_symlink_in_meshes_pointing_outside_is_refused(world, capsys, target):
     report = run(world, world.package, capsys)
     mesh = meshes / "base_link.STL"
     assert refusals(report, world.urdf) or refusals(report, mesh), report.format()
+
+
+@pytest.mark.parametrize("target", ["links.xml", "pipe"])
+def test_a_package_xml_linking_outside_is_refused_unread(world, capsys, target):
+    manifest = world.package / "package.xml"
+    manifest.unlink()
+    manifest.symlink_to(world.outside / target)
+    report = run(world, world.package, capsys)
+    assert report.status == 2
+    assert refusals(report, manifest), report.format()
