@@ -83,7 +83,7 @@ def convert(path: str | os.PathLike, folder: str | os.PathLike, *,
     data = mujoco.MjData(model)
     mujoco.mj_kinematics(model, data)
     result = Conversion(name=file_stem(spec.modelname), folder=folder, fixed=fixed,
-                        floor_z=min(0.0, _lowest_collision_point(model, data)) if fixed else 0.0,
+                        floor_z=_floor_height(model, data) if fixed else 0.0,
                         actuators=actuators, skipped=skipped,
                         excluded=[(e.bodyname1, e.bodyname2) for e in spec.excludes])
 
@@ -267,3 +267,10 @@ def readme(result: Conversion, package) -> str:
                    "the time step is MuJoCo's default, 2 ms.")
     out += [f"- {c}" for c in changes] + [""]
     return "\n".join(out)
+
+
+def _floor_height(model, data) -> float:
+    """0, or the model's lowest point when it reaches below 0 by more than a micrometre
+    (the exporter's numbers carry rounding noise of 1e-9 m that should not move the floor)."""
+    low = _lowest_collision_point(model, data)
+    return round(low, 6) if low < -1e-6 else 0.0

@@ -19,7 +19,7 @@ import pytest
 import yaml
 from lxml import etree
 from page_text import fenced_blocks, squash, xml_blocks
-from test_site import built_page, bundle, jekyll_build  # noqa: F401  (bundle is a fixture)
+from test_site import between, built_page, bundle, jekyll_build  # noqa: F401  (bundle is a fixture)
 
 from sw2sim.exporter_format import EXPORTER_GREY
 from sw2sim.practices import PRACTICES, design
@@ -33,9 +33,11 @@ EXAMPLE_3 = ROOT / "examples" / "example_3"
 REFERENCE = [
     ("01-getting-started.md", "/reference/getting-started/"),
     ("02-exporter.md", "/reference/exporter/"),
-    ("03-ros1-to-ros2.md", "/reference/ros1-to-ros2/"),
-    ("04-glossary.md", "/reference/glossary/"),
-    ("05-writing-a-lesson.md", "/reference/writing-a-lesson/"),
+    ("03-your-own-model.md", "/reference/your-own-model/"),
+    ("04-troubleshooting.md", "/reference/troubleshooting/"),
+    ("05-ros1-to-ros2.md", "/reference/ros1-to-ros2/"),
+    ("06-glossary.md", "/reference/glossary/"),
+    ("07-writing-a-lesson.md", "/reference/writing-a-lesson/"),
 ]
 
 
@@ -97,7 +99,7 @@ def test_blocks_parse_and_the_ros_2_files_are_never_run():
     assert blocks["01-getting-started.md"].runnable, "the installation check must run"
     check = blocks["01-getting-started.md"].runnable[0].code
     assert 'load_package("examples/example_1")' in check
-    ros2 = blocks["03-ros1-to-ros2.md"]
+    ros2 = blocks["05-ros1-to-ros2.md"]
     assert len(ros2.blocks) == 3 and not ros2.runnable
     assert all("ROS 2 Jazzy" in block.skip for block in ros2.skipped)
     assert len(blocks["02-exporter.md"].runnable) == 3
@@ -155,13 +157,13 @@ def test_exporter_page_facts():
 
 @pytest.fixture(scope="module")
 def ros2():
-    text = page("03-ros1-to-ros2.md")
+    text = page("05-ros1-to-ros2.md")
     xml = xml_blocks(text)
     manifest = etree.fromstring(xml[0].encode())
     urdf_end = etree.fromstring(f"<robot>{xml[1]}</robot>".encode())
     (controllers,) = [yaml.safe_load(block) for block in fenced_blocks(text, "yaml")]
     (cmake,) = fenced_blocks(text, "cmake")
-    python = [block.code for block in parse_page(PAGES / "03-ros1-to-ros2.md", ROOT).blocks]
+    python = [block.code for block in parse_page(PAGES / "05-ros1-to-ros2.md", ROOT).blocks]
     return text, manifest, urdf_end, controllers, cmake, python
 
 
@@ -276,7 +278,7 @@ TERMS = ["urdf", "link", "joint", "continuous-joint", "revolute-joint", "prismat
 
 def glossary_entries() -> list[tuple[str, str, str]]:
     """(title, anchor, text) of each glossary entry."""
-    text = page("04-glossary.md")
+    text = page("06-glossary.md")
     parts = re.split(r"^### (.+?) \{#([\w-]+)\}\n", text, flags=re.M)
     return [(parts[i], parts[i + 1], parts[i + 2]) for i in range(1, len(parts), 3)]
 
@@ -288,7 +290,7 @@ def test_glossary_has_the_course_terms_in_alphabetical_order():
     titles = [title.lower() for title, _, _ in entries]
     assert titles == sorted(titles)
     assert len(set(anchors)) == len(anchors)
-    headings = re.findall(r"^#{2,3} .*$", page("04-glossary.md"), re.M)
+    headings = re.findall(r"^#{2,3} .*$", page("06-glossary.md"), re.M)
     assert len(headings) == len(entries) + len({t[0] for t in titles}), "an entry without an anchor"
 
 
@@ -305,7 +307,7 @@ NOT_FILES = re.compile(r"practice[_-](N|6)|example_(N|6)|_N\b|^/|^_site/|^\.venv
 
 
 def test_writing_a_lesson_names_files_that_exist():
-    text = page("05-writing-a-lesson.md")
+    text = page("07-writing-a-lesson.md")
     words = {token.split()[0] for token in backticked(text)}
     paths = {w for w in words
              if "/" in w and re.fullmatch(r"[\w./-]+", w) and not NOT_FILES.search(w)}
@@ -315,7 +317,7 @@ def test_writing_a_lesson_names_files_that_exist():
 
 
 def test_writing_a_lesson_commands_exist():
-    text = page("05-writing-a-lesson.md")
+    text = page("07-writing-a-lesson.md")
     makefile = (ROOT / "Makefile").read_text()
     targets = set(re.findall(r"(?:^|`)make (\w+)", text, re.M))
     assert {"test", "serve", "build", "media"} <= targets
@@ -333,7 +335,7 @@ def test_writing_a_lesson_commands_exist():
 
 
 def test_writing_a_lesson_describes_the_practice_registry():
-    text = page("05-writing-a-lesson.md")
+    text = page("07-writing-a-lesson.md")
     assert "`PRACTICES`" in text and PRACTICES == [f"practice_{n}" for n in range(1, 6)]
     for practice in PRACTICES:
         module = design(practice)
@@ -343,8 +345,8 @@ def test_writing_a_lesson_describes_the_practice_registry():
 
 
 def test_writing_a_lesson_shows_the_runner_report_it_prints():
-    text = page("05-writing-a-lesson.md")
-    (block,) = [b for b in parse_page(PAGES / "05-writing-a-lesson.md", ROOT).runnable
+    text = page("07-writing-a-lesson.md")
+    (block,) = [b for b in parse_page(PAGES / "07-writing-a-lesson.md", ROOT).runnable
                 if "format_failure" in b.code]
     out = io.StringIO()
     with contextlib.redirect_stdout(out):
@@ -387,3 +389,25 @@ def test_internal_links_lead_to_a_page_and_heading(site, url):
             problems.append(f"{href}: no heading #{anchor} on {path or url}")
     assert checked >= 3, f"{url}: only {checked} internal links found"
     assert not problems, f"{url}:\n" + "\n".join(problems)
+
+
+# ---- troubleshooting: the page and the checker read the same rules ---------------------------
+
+
+def test_troubleshooting_data_is_the_rule_registry():
+    from sw2sim.check import troubleshooting
+    assert troubleshooting.main(["--check"]) == 0, (
+        "_data/check_rules.json is stale: run `python -m sw2sim.check.troubleshooting`")
+
+
+def test_troubleshooting_page_has_an_entry_per_rule(site):
+    from sw2sim.check import all_rules
+    text = built_page(site, "/reference/troubleshooting/").read_text()
+    for rule in all_rules().values():
+        entry = between(text, f'<h3 id="{rule.id}">', "</section>")
+        assert entry, f"no entry for {rule.id}"
+        for part in ("Symptom", "Cause", "Fix"):
+            assert f"<dt>{part}</dt><dd>" in entry, (rule.id, part)
+        heading = entry[:entry.index("</h3>")]
+        shown = html.unescape(re.sub(r"<[^>]+>", "", heading))
+        assert shown == f"{rule.id} {rule.title.replace('`', '')}", shown

@@ -1,8 +1,9 @@
-"""Regenerate the example packages (meshes, URDF, CSV, config, launch files) from the designs."""
+"""Regenerate the example packages (meshes, URDF, CSV, config, launch files) from the designs,
+and the raw sample export of the "Your own model" page (examples/Arm_Assembly)."""
 
 import sys
 
-from . import PRACTICES, ROOT, design
+from . import PRACTICES, ROOT, design, sample_export
 
 
 def main(argv: list[str]) -> int:
@@ -13,6 +14,9 @@ def main(argv: list[str]) -> int:
             return 2
         written = design(practice).write()
         for path in written:
+            print(path.relative_to(ROOT))
+    if not argv:
+        for path in sample_export.write():
             print(path.relative_to(ROOT))
     return 0
 
