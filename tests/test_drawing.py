@@ -6,11 +6,11 @@ import xml.etree.ElementTree as ET
 from dataclasses import replace
 
 import pytest
+from assembly_drawings import assembly as assembly_of
 
 from sw2sim.drawing import assembly_drawing_svg, part_drawing_svg
 from sw2sim.parts import Box, Dimension, Material, Part
 from sw2sim.practices import PRACTICES
-from sw2sim.practices import design as practice_design
 from sw2sim.practices.practice_1 import design
 
 NS = {"s": "http://www.w3.org/2000/svg"}
@@ -31,7 +31,7 @@ def drawings():
 
 @pytest.fixture(scope="module")
 def assembly():
-    return assembly_drawing_svg(design.robot())
+    return assembly_of("practice_1")[1]
 
 
 def tag(el) -> str:
@@ -343,8 +343,8 @@ def test_yawed_box_is_drawn_turned_in_the_top_view():
 def test_balloons_keep_clear_of_the_joint_names(practice):
     """A balloon level with a joint name would put its leader through the name."""
     from sw2sim.drawing import BALLOON_R
-    robot = practice_design(practice).robot()
-    notes = texts(assembly_drawing_svg(robot), "top-notes")
+    robot, svg = assembly_of(practice)
+    notes = texts(svg, "top-notes")
     names = {j.name for j in robot.joints}
     balloons = [float(t.attrib["y"]) for t in notes if t.text.isdigit()]
     labels = [float(t.attrib["y"]) for t in notes if t.text in names]
@@ -355,8 +355,8 @@ def test_balloons_keep_clear_of_the_joint_names(practice):
 
 @pytest.mark.parametrize("practice", PRACTICES)
 def test_every_joint_is_named_once_and_names_do_not_overlap(practice):
-    robot = practice_design(practice).robot()
-    notes = texts(assembly_drawing_svg(robot), "top-notes")
+    robot, svg = assembly_of(practice)
+    notes = texts(svg, "top-notes")
     names = {j.name for j in robot.joints}
     labels = [t for t in notes if set(t.text.split(", ")) <= names]
     shown = [n for t in labels for n in t.text.split(", ")]

@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 import shapely
 import trimesh
+from assembly_drawings import assembly
 
 import sw2sim
 import mujoco
@@ -477,8 +478,7 @@ def test_bad_dimensions_are_refused():
 
 
 def test_assembly_drawing_names_every_joint():
-    from sw2sim.drawing import assembly_drawing_svg
-    svg = assembly_drawing_svg(design.robot())
+    _, svg = assembly("practice_2")
     texts = [el.text for el in ET.fromstring(svg).iter() if el.tag.endswith("text")]
     for name in WHEELS:
         assert name in texts
