@@ -11,9 +11,10 @@ STAMPS  := .make
 HOST    ?= 127.0.0.1
 PORT    ?= 4000
 
-# Debian packages the site, the renderer and the URDF checks need.
+# Debian packages the site, the renderer, the URDF checks and the site's link checker need.
 APT_PACKAGES := jekyll ruby-jekyll-seo-tag ruby-jekyll-sitemap bundler \
-                ruby-kramdown-parser-gfm ruby-webrick libosmesa6 liburdfdom-tools
+                ruby-kramdown-parser-gfm ruby-webrick libosmesa6 liburdfdom-tools \
+                ruby-html-proofer
 
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
@@ -22,16 +23,17 @@ export MUJOCO_GL ?= osmesa
 # Jekyll: do not try to reach the gem index (offline build with Debian's gems).
 export JEKYLL_ENV ?= production
 
-.PHONY: help setup media build serve test clean distclean
+.PHONY: help setup media build site serve test clean distclean
 
 help:
 	@echo "make serve   set up, regenerate stale figures, build and serve the site at http://$(HOST):$(PORT)"
-	@echo "make test    set up, then run every test"
-	@echo "make build   build the site into _site/"
+	@echo "make test    set up, build the site, then run every test"
+	@echo "make build   regenerate stale figures and build the site into _site/"
+	@echo "make site    build the site into _site/ from the figures as they are"
 	@echo "make media   regenerate figures whose inputs changed"
 	@echo "make clean   remove build outputs (keeps .venv and node_modules)"
 
-setup: $(STAMPS)/apt $(STAMPS)/venv $(STAMPS)/npm
+setup: $(STAMPS)/apt $(STAMPS)/browser $(STAMPS)/venv $(STAMPS)/npm
 
 $(STAMPS)/apt: Makefile
 	@missing=$$(for p in $(APT_PACKAGES); do \
@@ -41,6 +43,16 @@ $(STAMPS)/apt: Makefile
 	    $(SUDO) apt-get update -qq && \
 	    DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq --no-install-recommends $$missing; \
 	fi
+	@mkdir -p $(STAMPS) && touch $@
+
+# The browser tests/browser/ drives (through Playwright, which never downloads one).
+# Debian packages it as `chromium`; a machine that already has `chromium` keeps its own.
+$(STAMPS)/browser: Makefile
+	@command -v chromium >/dev/null || { \
+	    echo "Installing Debian package: chromium"; \
+	    $(SUDO) apt-get update -qq && \
+	    DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq \
+	        --no-install-recommends chromium; }
 	@mkdir -p $(STAMPS) && touch $@
 
 $(STAMPS)/venv: requirements.txt pyproject.toml
@@ -61,9 +73,15 @@ assets/vendor/.done: $(STAMPS)/npm tools/copy-vendor.sh
 media: setup
 	$(PY) -m sw2sim.media
 
+# Figures first, then the site that shows them (a sub-make keeps that order under -j).
+build: media
+	@$(MAKE) --no-print-directory site
+
+# The site from the figures as they are: `make test` checks the committed figures
+# (tests/test_media.py) and the site built from them, so it must not refresh them first.
 # Bundler resolves the Gemfile against the Debian gems only (--local: no gem index is
 # reachable); `bundle check` makes it a no-op once Gemfile.lock matches.
-build: setup media assets/vendor/.done
+site: setup assets/vendor/.done
 	@BUNDLE_SILENCE_ROOT_WARNING=1 bundle check >/dev/null 2>&1 || \
 	    BUNDLE_SILENCE_ROOT_WARNING=1 bundle install --local --quiet
 	bundle exec jekyll build --quiet
@@ -73,7 +91,8 @@ serve: build
 	@echo "Serving at http://$(HOST):$(PORT) (Ctrl-C to stop)"
 	bundle exec jekyll serve --skip-initial-build --no-watch --host $(HOST) --port $(PORT)
 
-test: setup assets/vendor/.done
+# tests/browser/ reads the _site that `site` just built.
+test: site
 	$(PY) -m pytest
 
 clean:
