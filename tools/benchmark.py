@@ -1,55 +1,141 @@
 """Print how long the expensive parts of `make test` take on this machine.
 
-    .venv/bin/python tools/benchmark.py
+    .venv/bin/python tools/benchmark.py                 # models, drawings, pages, figures
+    .venv/bin/python tools/benchmark.py pages tests     # only these sections
 
-Figures, not assertions: compare them before and after a change (2-core machines are
-the target). Nothing here is run by the tests.
+Sections: `models` (load, compile, step rate of each example), `drawings` (each part and
+assembly drawing), `pages` (each lesson page in a fresh process, as tests/test_pages.py
+runs them), `figures` (each figure made as `make media` makes it, and whether the tests
+would make it again: they do only when the manifest cannot vouch for the committed file),
+`tests` (each test file in a pytest of its own).
+
+Figures, not assertions: compare them before and after a change (2-core machines are the
+target). Each line shows CPU seconds as well as wall-clock seconds: on a busy machine the
+wall clock says more about the other processes than about this code. Nothing here is run
+by the tests.
 """
 
+import os
+import resource
+import subprocess
+import sys
 import time
 from pathlib import Path
 
 import sw2sim
 import mujoco
-from sw2sim.media import all_figures
-from sw2sim.practices import PRACTICES, ROOT, package_dir
+from sw2sim.drawing import assembly_drawing_svg, part_drawing_svg
+from sw2sim.media import all_figures, is_current, read_manifest
+from sw2sim.practices import PRACTICES, ROOT, design, package_dir
 from sw2sim.snippets import find_pages, parse_page, run_page
 
-
-def timed(label: str, fn, *args, **kwargs):
-    start = time.perf_counter()
-    result = fn(*args, **kwargs)
-    print(f"{label:55} {time.perf_counter() - start:7.2f} s")
-    return result
+DEFAULT = ("models", "drawings", "pages", "figures")
 
 
-def main() -> None:
-    print("== models")
+def cpu_seconds() -> float:
+    """CPU time of this process (all its threads) and of the children it has waited for."""
+    own = resource.getrusage(resource.RUSAGE_SELF)
+    children = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return own.ru_utime + own.ru_stime + children.ru_utime + children.ru_stime
+
+
+class Section:
+    """Timed lines under a heading, and their total."""
+
+    def __init__(self, title: str):
+        self.cpu = self.wall = 0.0
+        print(f"== {title}")
+        print(f"{'':60} {'cpu':>7}   {'wall':>7}")
+
+    def timed(self, label: str, fn, *args, note: str = "", **kwargs):
+        cpu, wall = cpu_seconds(), time.perf_counter()
+        result = fn(*args, **kwargs)
+        cpu, wall = cpu_seconds() - cpu, time.perf_counter() - wall
+        self.cpu += cpu
+        self.wall += wall
+        print(f"{label:60} {cpu:7.2f} s {wall:7.2f} s  {note}".rstrip(), flush=True)
+        return result
+
+    def total(self) -> None:
+        print(f"{'total':60} {self.cpu:7.2f} s {self.wall:7.2f} s\n")
+
+
+def models() -> None:
+    section = Section("models")
     for practice in PRACTICES:
         pkg = package_dir(practice)
-        spec = timed(f"load_package {pkg.name}", sw2sim.load_package, pkg)
-        model = timed(f"compile {pkg.name}", spec.compile)
+        spec = section.timed(f"load_package {pkg.name}", sw2sim.load_package, pkg)
+        model = section.timed(f"compile {pkg.name}", spec.compile)
         data = mujoco.MjData(model)
         steps = 5000
         start = time.perf_counter()
-        for _ in range(steps):
-            mujoco.mj_step(model, data)
+        mujoco.mj_step(model, data, nstep=steps)
         rate = steps / (time.perf_counter() - start)
-        print(f"{'step rate ' + pkg.name:55} {rate:7.0f} steps/s ({rate * model.opt.timestep:.0f}x real time)")
+        real_time = rate * model.opt.timestep
+        print(f"{'step rate ' + pkg.name:60} {rate:7.0f} steps/s ({real_time:.0f}x real time)")
+    section.total()
 
-    print("== pages (each in a fresh process)")
+
+def drawings() -> None:
+    section = Section("drawings (tests/test_drawing.py and the practices' tests draw these)")
+    for practice in PRACTICES:
+        module = design(practice)
+        for part in module.parts():
+            section.timed(f"{practice} part {part.name}", part_drawing_svg, part)
+        section.timed(f"{practice} assembly", assembly_drawing_svg, module.robot())
+    section.total()
+
+
+def pages() -> None:
+    section = Section("pages (each in a fresh process; the tests run a few at once)")
     for page_path in find_pages(ROOT):
         page = parse_page(page_path, ROOT)
-        result = timed(str(page_path.relative_to(ROOT)), run_page, page, ROOT)
+        result = section.timed(str(page_path.relative_to(ROOT)), run_page, page, ROOT)
         if not result.ok:
             print("   failed")
+    section.total()
 
-    print("== figures")
+
+def figures() -> None:
+    section = Section("figures (made in this process; 'remade' = the tests would make it again)")
+    manifest = read_manifest()
     tmp = Path("/tmp/sw2sim-benchmark")
     tmp.mkdir(exist_ok=True)
     for fig in all_figures():
-        timed(fig.output, fig.make, tmp / fig.path.name)
+        note = "" if is_current(fig, manifest) else "remade"
+        section.timed(fig.output, fig.make, tmp / fig.path.name, note=note)
+    section.total()
+
+
+def tests() -> None:
+    section = Section("test files (each in a pytest of its own)")
+    for path in sorted((ROOT / "tests").glob("test_*.py")):
+        command = [sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider", str(path)]
+        done = section.timed(str(path.relative_to(ROOT)), subprocess.run, command, cwd=ROOT,
+                             capture_output=True, text=True)
+        if done.returncode != 0:
+            print(f"   exit status {done.returncode}")
+    section.total()
+
+
+SECTIONS = {"models": models, "drawings": drawings, "pages": pages, "figures": figures,
+            "tests": tests}
+
+
+def main(argv: list[str]) -> int:
+    chosen = argv or list(DEFAULT)
+    unknown = [name for name in chosen if name not in SECTIONS]
+    if unknown:
+        print(f"unknown sections {unknown}; choose from {', '.join(SECTIONS)}", file=sys.stderr)
+        return 2
+    load = os.getloadavg()[0]
+    cores = len(os.sched_getaffinity(0))
+    print(f"load average {load:.1f} on {cores} cores"
+          + ("  (busy: trust the cpu column, not the wall clock)" if load > 0.5 * cores else ""))
+    for name in chosen:
+        SECTIONS[name]()
+    return 0
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main(sys.argv[1:]))
