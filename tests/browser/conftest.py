@@ -44,7 +44,8 @@ from html_proofer import HtmlProofer
 from site_server import NODE_MODULES_URL, SiteServer
 
 ROOT = Path(__file__).resolve().parents[2]
-SITE = ROOT / "_site"
+# $SW2SIM_SITE points the tests at a site built elsewhere (several builds side by side).
+SITE = Path(os.environ.get("SW2SIM_SITE") or ROOT / "_site")
 NODE_MODULES = ROOT / "node_modules"
 SITEMAP_NS = {"s": "http://www.sitemaps.org/schemas/sitemap/0.9"}
 
