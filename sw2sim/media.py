@@ -173,6 +173,13 @@ def stale(figures: list[Figure], manifest: dict[str, dict[str, str]]) -> list[Fi
     return [f for f in figures if not is_current(f, manifest)]
 
 
+def cores() -> int:
+    """The CPU cores this process may use."""
+    if hasattr(os, "sched_getaffinity"):  # not on macOS
+        return len(os.sched_getaffinity(0))
+    return os.cpu_count() or 1
+
+
 def _bar(done: int, total: int, width: int = 24) -> str:
     filled = round(width * done / total) if total else width
     return "[" + "#" * filled + "-" * (width - filled) + f"] {done}/{total}"
@@ -182,7 +189,7 @@ def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="python -m sw2sim.media", description=__doc__.splitlines()[0])
     parser.add_argument("--force", action="store_true", help="remake every figure")
     parser.add_argument("--check", action="store_true", help="only list stale figures; exit 1 if any")
-    parser.add_argument("--jobs", type=int, default=len(os.sched_getaffinity(0)),
+    parser.add_argument("--jobs", type=int, default=cores(),
                         help="figures made at once, each in a process of its own (default: cores)")
     parser.add_argument("only", nargs="*", help="make only figures whose path contains one of these")
     args = parser.parse_args(argv)

@@ -5,12 +5,12 @@ more cores, starting them together for the whole module, then letting every test
 its own result, takes a fraction of the time of making them one after the other.
 """
 
-import os
+from sw2sim.media import cores
 
 
 def workers() -> int:
     """How many jobs to run at once: the cores this process may use, at most four."""
-    return max(1, min(4, len(os.sched_getaffinity(0))))
+    return max(1, min(4, cores()))
 
 
 def selected(request, test_name: str, param: str) -> list:

@@ -25,7 +25,7 @@ from pathlib import Path
 import sw2sim
 import mujoco
 from sw2sim.drawing import assembly_drawing_svg, part_drawing_svg
-from sw2sim.media import all_figures, is_current, read_manifest
+from sw2sim.media import all_figures, cores, is_current, read_manifest
 from sw2sim.practices import PRACTICES, ROOT, design, package_dir
 from sw2sim.snippets import find_pages, parse_page, run_page
 
@@ -128,10 +128,9 @@ def main(argv: list[str]) -> int:
     if unknown:
         print(f"unknown sections {unknown}; choose from {', '.join(SECTIONS)}", file=sys.stderr)
         return 2
-    load = os.getloadavg()[0]
-    cores = len(os.sched_getaffinity(0))
-    print(f"load average {load:.1f} on {cores} cores"
-          + ("  (busy: trust the cpu column, not the wall clock)" if load > 0.5 * cores else ""))
+    load, n = os.getloadavg()[0], cores()
+    print(f"load average {load:.1f} on {n} cores"
+          + ("  (busy: trust the cpu column, not the wall clock)" if load > 0.5 * n else ""))
     for name in chosen:
         SECTIONS[name]()
     return 0
