@@ -25,3 +25,11 @@ cp "$katex"/fonts/KaTeX_* "$out/katex/fonts/"
 cp node_modules/katex/LICENSE "$out/katex/"
 
 echo "copy-vendor: KaTeX $(node -p 'require("./node_modules/katex/package.json").version' 2>/dev/null || echo '?') -> $out/katex"
+
+# The site search (assets/js/search.js) loads lunr on the first use of the search box.
+if [ ! -f node_modules/lunr/lunr.min.js ]; then
+    echo "copy-vendor: node_modules/lunr/lunr.min.js not found: run 'make setup' first." >&2
+    exit 1
+fi
+mkdir -p "$out/lunr"
+cp node_modules/lunr/lunr.min.js node_modules/lunr/LICENSE "$out/lunr/"
