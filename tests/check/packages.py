@@ -56,3 +56,31 @@ def line_of(path: Path, needle: str) -> int:
         if needle in line:
             return number
     raise AssertionError(f"{needle!r} not in {path}")
+
+
+# The exit status each severity gives a report that has nothing worse.
+STATUS = {"fatal": 2, "error": 1, "warning": 0}
+
+
+def fires_at(package: Path, rule_id: str, needle: str | None, file: Path | None = None):
+    """Check `package` and assert `rule_id` fires: first at the line of `file` (default: the
+    URDF) holding `needle` (no line when None), with the exit status of its severity, a
+    message and a fix. Returns the report and the rule's findings."""
+    from sw2sim.check import RULES, check
+
+    report = check(package, stability=False)
+    hits = [f for f in report.findings if f.rule == rule_id]
+    assert hits, report.format()
+    file = file or urdf_of(package)
+    assert Path(hits[0].file).resolve() == file.resolve(), report.format()
+    assert hits[0].line == (None if needle is None else line_of(file, needle)), report.format()
+    assert report.status == STATUS[RULES[rule_id].severity], report.format()
+    assert f"[{rule_id}]" in report.format()
+    assert hits[0].message and hits[0].fix
+    return report, hits
+
+
+def group_findings(report, group: str) -> list:
+    """The report's findings of one rule group."""
+    from sw2sim.check import RULES
+    return [f for f in report.findings if RULES[f.rule].group == group]

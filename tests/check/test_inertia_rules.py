@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 from lxml import etree
-from packages import EXAMPLES, copy_example, edit, edit_re, line_of, urdf_of
+from packages import EXAMPLES, copy_example, edit, edit_re, fires_at, group_findings, urdf_of
 
 from sw2sim import LoadError, load_package
 from sw2sim.check import RULES, all_rules, check
@@ -57,11 +57,10 @@ WHERE = {
     "com-outside-geometry": 'xyz="0.5 0 0"',
     "density-implausible": 'value="500"',
 }
-STATUS = {"fatal": 2, "error": 1, "warning": 0}
 
 
 def ours(report) -> list:
-    return [f for f in report.findings if RULES[f.rule].group == GROUP]
+    return group_findings(report, GROUP)
 
 
 def test_battery_covers_every_inertia_rule():
@@ -70,14 +69,8 @@ def test_battery_covers_every_inertia_rule():
 
 @pytest.mark.parametrize("rule_id", sorted(BATTERY))
 def test_rule_fires_at_the_offending_line(rule_id, tmp_path):
-    package = BATTERY[rule_id](tmp_path)
-    report = check(package, stability=False)
-    hits = [f for f in report.findings if f.rule == rule_id]
+    report, hits = fires_at(BATTERY[rule_id](tmp_path), rule_id, WHERE[rule_id])
     assert len(hits) == 1, report.format()
-    urdf = urdf_of(package)
-    assert Path(hits[0].file).resolve() == urdf.resolve()
-    assert hits[0].line == line_of(urdf, WHERE[rule_id]), report.format()
-    assert report.status == STATUS[RULES[rule_id].severity], report.format()
     assert '"front_left_wheel"' in hits[0].message
     assert f"[{rule_id}]" in report.format()
 

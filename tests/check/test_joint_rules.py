@@ -5,9 +5,9 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
-from packages import EXAMPLES, copy_example, edit, edit_re, line_of, urdf_of
+from packages import EXAMPLES, copy_example, edit, edit_re, fires_at, group_findings, urdf_of
 
-from sw2sim.check import RULES, all_rules, check, joints, open_package
+from sw2sim.check import all_rules, check, joints, open_package
 
 GROUP = "joint"
 # Practice 3's first revolute joint, as exported: the limit every edit below starts from.
@@ -59,11 +59,10 @@ WHERE = {
     "limit-on-continuous": 'lower="-1"',
     "safety-limits-misspelt": 'soft_lower="-0.7854"',
 }
-STATUS = {"fatal": 2, "error": 1, "warning": 0}
 
 
 def ours(report) -> list:
-    return [f for f in report.findings if RULES[f.rule].group == GROUP]
+    return group_findings(report, GROUP)
 
 
 def joint_findings(package: Path) -> list:
@@ -83,15 +82,7 @@ def test_battery_covers_every_joint_rule():
 
 @pytest.mark.parametrize("rule_id", sorted(BATTERY))
 def test_rule_fires_at_the_offending_line(rule_id, tmp_path):
-    package = BATTERY[rule_id](tmp_path)
-    report = check(package, stability=False)
-    hits = [f for f in report.findings if f.rule == rule_id]
-    assert hits, report.format()
-    urdf = urdf_of(package)
-    assert Path(hits[0].file).resolve() == urdf.resolve()
-    assert hits[0].line == line_of(urdf, WHERE[rule_id]), report.format()
-    assert report.status == STATUS[RULES[rule_id].severity], report.format()
-    assert f"[{rule_id}]" in report.format()
+    report, _ = fires_at(BATTERY[rule_id](tmp_path), rule_id, WHERE[rule_id])
     # One broken thing, one finding of this group.
     assert [f.rule for f in ours(report)] == [rule_id]
 

@@ -12,9 +12,9 @@ import numpy as np
 import pytest
 import trimesh
 from lxml import etree
-from packages import EXAMPLES, copy_example, edit, line_of, urdf_of
+from packages import EXAMPLES, copy_example, edit, fires_at, group_findings, line_of, urdf_of
 
-from sw2sim.check import RULES, all_rules, check
+from sw2sim.check import all_rules, check
 from sw2sim.check.meshes import _flatness, millimetre_suspect
 
 GROUP = "mesh"
@@ -112,11 +112,10 @@ WHERE = {
     "mesh-units": STL,
     "mesh-heavy-collision": "meshes/./front_left_wheel.STL",
 }
-STATUS = {"fatal": 2, "error": 1, "warning": 0}
 
 
 def ours(report) -> list:
-    return [f for f in report.findings if RULES[f.rule].group == GROUP]
+    return group_findings(report, GROUP)
 
 
 def test_battery_covers_every_mesh_rule():
@@ -125,16 +124,8 @@ def test_battery_covers_every_mesh_rule():
 
 @pytest.mark.parametrize("rule_id", sorted(BATTERY))
 def test_rule_fires_at_the_offending_line(rule_id, tmp_path):
-    package = BATTERY[rule_id](tmp_path)
-    report = check(package, stability=False)
-    hits = [f for f in report.findings if f.rule == rule_id]
+    report, hits = fires_at(BATTERY[rule_id](tmp_path), rule_id, WHERE[rule_id])
     assert len(hits) == 1, report.format()   # once, although two <mesh> elements name the file
-    urdf = urdf_of(package)
-    assert Path(hits[0].file).resolve() == urdf.resolve()
-    assert hits[0].line == line_of(urdf, WHERE[rule_id]), report.format()
-    assert report.status == STATUS[RULES[rule_id].severity], report.format()
-    assert f"[{rule_id}]" in report.format()
-    assert hits[0].message and hits[0].fix
 
 
 @pytest.mark.parametrize("n", range(1, 6))

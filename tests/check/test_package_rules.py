@@ -5,9 +5,9 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
-from packages import EXAMPLES, copy_example, edit, line_of, urdf_of
+from packages import EXAMPLES, copy_example, edit, fires_at, group_findings, line_of, urdf_of
 
-from sw2sim.check import RULES, all_rules, check, open_package, package_xml
+from sw2sim.check import all_rules, check, open_package, package_xml
 from sw2sim.check.package_xml import _suggest
 
 GROUP = "package"
@@ -66,11 +66,10 @@ WHERE = {
     "package-name-mismatch": ("urdf/example_1.urdf", "package://example_1/meshes/base_link.STL"),
     "package-folder-name": ("package.xml", "<name>example_1</name>"),
 }
-STATUS = {"fatal": 2, "error": 1, "warning": 0}
 
 
 def ours(report) -> list:
-    return [f for f in report.findings if RULES[f.rule].group == GROUP]
+    return group_findings(report, GROUP)
 
 
 def package_findings(path: Path, rule_id: str | None = None) -> list:
@@ -88,15 +87,8 @@ def test_battery_covers_every_package_rule():
 @pytest.mark.parametrize("rule_id", sorted(BATTERY))
 def test_rule_fires_at_the_offending_line(rule_id, tmp_path):
     package = BATTERY[rule_id](tmp_path)
-    report = check(package, stability=False)
-    hits = [f for f in report.findings if f.rule == rule_id]
-    assert hits, report.format()
     relative, needle = WHERE[rule_id]
-    file = package / relative
-    assert Path(hits[0].file).resolve() == file.resolve()
-    assert hits[0].line == (None if needle is None else line_of(file, needle)), report.format()
-    assert report.status == STATUS[RULES[rule_id].severity], report.format()
-    assert f"[{rule_id}]" in report.format()
+    report, hits = fires_at(package, rule_id, needle, package / relative)
 
 
 @pytest.mark.parametrize("n", range(1, 6))

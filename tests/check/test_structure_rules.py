@@ -5,9 +5,10 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
-from packages import EXAMPLES, copy_example, edit, edit_re, line_of, urdf_of
+from packages import (EXAMPLES, copy_example, edit, edit_re, fires_at,
+                      group_findings, line_of, urdf_of)
 
-from sw2sim.check import RULES, all_rules, check, open_package, structure
+from sw2sim.check import all_rules, check, open_package, structure
 from sw2sim.check.structure import number, vector
 from sw2sim.exporter_format import urdf_text
 from sw2sim.practices import PRACTICES, design
@@ -64,11 +65,10 @@ WHERE = {
     "urdf-no-links": 'name="example_1"',
     "number-invalid": 'xyz="0.13 0,18 0"',
 }
-STATUS = {"fatal": 2, "error": 1, "warning": 0}
 
 
 def ours(report) -> list:
-    return [f for f in report.findings if RULES[f.rule].group == GROUP]
+    return group_findings(report, GROUP)
 
 
 def test_battery_covers_every_structure_rule():
@@ -77,16 +77,7 @@ def test_battery_covers_every_structure_rule():
 
 @pytest.mark.parametrize("rule_id", sorted(BATTERY))
 def test_rule_fires_at_the_offending_line(rule_id, tmp_path):
-    package = BATTERY[rule_id](tmp_path)
-    report = check(package, stability=False)
-    hits = [f for f in report.findings if f.rule == rule_id]
-    assert hits, report.format()
-    urdf = urdf_of(package)
-    assert Path(hits[0].file).resolve() == urdf.resolve()
-    assert hits[0].line == line_of(urdf, WHERE[rule_id]), report.format()
-    assert report.status == STATUS[RULES[rule_id].severity]
-    assert f"[{rule_id}]" in report.format()
-    assert hits[0].message and hits[0].fix
+    fires_at(BATTERY[rule_id](tmp_path), rule_id, WHERE[rule_id])
 
 
 @pytest.mark.parametrize("n", range(1, 6))
