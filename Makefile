@@ -30,7 +30,7 @@ help:
 	@echo "make test    set up, build the site, then run every test"
 	@echo "make build   regenerate stale figures and build the site into _site/"
 	@echo "make site    build the site into _site/ from the figures as they are"
-	@echo "make media   regenerate figures whose inputs changed, and the checker rules page data"
+	@echo "make media   regenerate figures and notebooks whose inputs changed, and the checker rules page data"
 	@echo "make clean   remove build outputs (keeps .venv and node_modules)"
 
 setup: $(STAMPS)/apt $(STAMPS)/browser $(STAMPS)/venv $(STAMPS)/npm
@@ -70,10 +70,12 @@ assets/vendor/.done: $(STAMPS)/npm tools/copy-vendor.sh
 	bash tools/copy-vendor.sh
 	@touch $@
 
-# Figures, and the Troubleshooting page's data written from the checker's rules.
+# Figures, the Troubleshooting page's data written from the checker's rules, then the
+# lesson notebooks (notebooks/; run again only when their code or its inputs changed).
 media: setup
 	$(PY) -m sw2sim.media
 	$(PY) -m sw2sim.check.troubleshooting
+	$(PY) -m sw2sim.notebooks
 
 # Figures first, then the site that shows them (a sub-make keeps that order under -j).
 build: media

@@ -51,7 +51,7 @@ SITEMAP_NS = {"s": "http://www.sitemaps.org/schemas/sitemap/0.9"}
 
 # What Jekyll reads to build the site (see _config.yml): newer files mean a stale _site.
 SITE_SOURCES = ["_config.yml", "_pages", "_layouts", "_includes", "_plugins", "_data",
-                "assets", "media", "examples"]
+                "assets", "media", "examples", "notebooks"]
 # Files Jekyll leaves out of the site anyway (_plugins/verbatim_dirs.rb, _config.yml).
 NOT_PUBLISHED = {"__pycache__", "MUJOCO_LOG.TXT"}
 
