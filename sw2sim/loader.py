@@ -24,8 +24,12 @@ import mujoco  # noqa: E402
 class LoadError(Exception):
     """A package that cannot be loaded; the message names the file (and line) and the fix."""
 
-    def __init__(self, file: Path | str, message: str, line: int | None = None):
-        self.file, self.line, self.message = str(file), line, message
+    # What kind of problem it is, for tools that sort them (sw2sim check): "invalid" (the
+    # default), "missing" (no such file), "syntax" (not well-formed XML), "unsafe" (a path
+    # leading outside the package).
+    def __init__(self, file: Path | str, message: str, line: int | None = None, *,
+                 kind: str = "invalid"):
+        self.file, self.line, self.message, self.kind = str(file), line, message, kind
         where = f"{self.file}:{line}" if line else self.file
         super().__init__(f"{where}: {message}")
 
@@ -43,12 +47,14 @@ def find_package(path: str | os.PathLike) -> Package:
     """Locate the URDF and the package root from a package folder or a .urdf file."""
     path = Path(path)
     if not path.exists():
-        raise LoadError(path, "no such file or folder; give a package folder or a .urdf file")
+        raise LoadError(path, "no such file or folder; give a package folder or a .urdf file",
+                        kind="missing")
     if path.is_dir():
         root = path
         candidates = sorted((path / "urdf").glob("*.urdf")) or sorted(path.glob("*.urdf"))
         if not candidates:
-            raise LoadError(path, "no URDF found; an exported package keeps it in urdf/<name>.urdf")
+            raise LoadError(path, "no URDF found; an exported package keeps it in urdf/<name>.urdf",
+                            kind="missing")
         preferred = [c for c in candidates if c.stem == path.name]
         urdf = (preferred or candidates)[0]
     else:
@@ -58,7 +64,7 @@ def find_package(path: str | os.PathLike) -> Package:
     manifest = root / "package.xml"
     if manifest.is_symlink() and root.resolve() not in manifest.resolve().parents:
         raise LoadError(manifest, "package.xml is a link to a file outside the package; "
-                        "copy the file into the package instead")
+                        "copy the file into the package instead", kind="unsafe")
     if manifest.is_file():
         try:
             tree = etree.parse(str(manifest), _parser())
@@ -66,7 +72,8 @@ def find_package(path: str | os.PathLike) -> Package:
             if found:
                 name = found.strip()
         except etree.XMLSyntaxError as exc:
-            raise LoadError(manifest, f"not well-formed XML: {exc.msg}", exc.lineno) from None
+            raise LoadError(manifest, f"not well-formed XML: {exc.msg}", exc.lineno,
+                            kind="syntax") from None
     return Package(root=root.resolve(), name=name, urdf=urdf.resolve())
 
 

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import math
 import os
-from functools import cached_property
+from functools import cached_property, lru_cache
 from pathlib import Path
 
 from lxml import etree
@@ -144,12 +144,24 @@ def _read_mesh(path: Path):
 
 
 def display(path: str | os.PathLike) -> str:
-    """A path as the user would type it: relative to the working folder when inside it."""
-    path = Path(path)
-    try:
-        return str(path.resolve().relative_to(Path.cwd().resolve()))
-    except ValueError:
-        return str(path)
+    """A path as the user would type it: relative to the working folder when inside it.
+
+    Links are not followed (a package.xml that links elsewhere is still "package.xml"), and
+    nothing is read from disk but the working folder's real name, once per folder: a report
+    may hold thousands of findings."""
+    path = Path(os.path.abspath(path))
+    cwd = os.getcwd()
+    for base in (Path(os.path.abspath(cwd)), _real(cwd)):
+        try:
+            return str(path.relative_to(base))
+        except ValueError:
+            continue
+    return str(path)
+
+
+@lru_cache(maxsize=16)
+def _real(folder: str) -> Path:
+    return Path(folder).resolve()
 
 
 def open_package(path: str | os.PathLike) -> Context:
@@ -163,13 +175,12 @@ def open_package(path: str | os.PathLike) -> Context:
     try:
         ctx.package = find_package(given)
     except LoadError as exc:
-        if "well-formed" in exc.message:
-            ctx.add("xml-syntax", exc.message, file=exc.file, line=exc.line)
-        elif "outside the package" in exc.message:
+        if exc.kind == "unsafe":    # "what is wrong; how to fix it"
             problem, _, fix = exc.message.partition("; ")
             ctx.add("input-unreadable", problem, file=exc.file, fix=fix or None)
         else:
-            ctx.add("input-missing", exc.message, file=exc.file, line=exc.line)
+            rule_id = "xml-syntax" if exc.kind == "syntax" else "input-missing"
+            ctx.add(rule_id, exc.message, file=exc.file, line=exc.line)
         return ctx
     urdf = ctx.package.urdf
     try:
