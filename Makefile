@@ -18,8 +18,6 @@ APT_PACKAGES := jekyll ruby-jekyll-seo-tag ruby-jekyll-sitemap bundler \
 
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-# MuJoCo renders off-screen; the variable must be set before `import mujoco`.
-export MUJOCO_GL ?= osmesa
 # Jekyll: do not try to reach the gem index (offline build with Debian's gems).
 export JEKYLL_ENV ?= production
 
@@ -73,9 +71,9 @@ assets/vendor/.done: $(STAMPS)/npm tools/copy-vendor.sh
 # Figures, the Troubleshooting page's data written from the checker's rules, then the
 # lesson notebooks (notebooks/; run again only when their code or its inputs changed).
 media: setup
-	$(PY) -m sw2sim.media
-	$(PY) -m sw2sim.check.troubleshooting
-	$(PY) -m sw2sim.notebooks
+	$(PY) -m course.media
+	$(PY) -m course.troubleshooting
+	$(PY) -m course.notebooks
 
 # Figures first, then the site that shows them (a sub-make keeps that order under -j).
 build: media

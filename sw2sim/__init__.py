@@ -1,16 +1,13 @@
 """From a SolidWorks-exported URDF package to a MuJoCo simulation.
 
-`import sw2sim` before `import mujoco` when rendering off-screen: it picks the GL
-platform (OSMesa, or EGL where OSMesa is missing) unless MUJOCO_GL is already set.
-MuJoCo itself is imported only when `load_package` is first used, so tools that never
-simulate (the page runner, the figure list) start quickly.
+`import sw2sim` before `import mujoco` when rendering without a screen: it chooses the
+OpenGL platform MuJoCo will use (see `sw2sim.gl`). MuJoCo itself is imported only when
+`load_package` is first used, so commands that never simulate start quickly.
 """
 
-import ctypes.util
-import os
+from . import gl
 
-if "MUJOCO_GL" not in os.environ:
-    os.environ["MUJOCO_GL"] = "osmesa" if ctypes.util.find_library("OSMesa") else "egl"
+gl.choose()
 
 __all__ = ["LoadError", "load_package"]
 

@@ -16,9 +16,7 @@ from pathlib import Path
 import numpy as np
 from lxml import etree
 
-# Off-screen rendering needs the GL platform chosen before mujoco is first imported.
-os.environ.setdefault("MUJOCO_GL", "osmesa")
-import mujoco  # noqa: E402
+import mujoco
 
 
 class LoadError(Exception):

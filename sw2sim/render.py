@@ -6,7 +6,6 @@ from pathlib import Path
 
 import numpy as np
 
-import sw2sim  # noqa: F401  (chooses the GL platform before mujoco loads)
 import mujoco
 from PIL import Image
 

