@@ -16,7 +16,9 @@ from pathlib import Path
 
 from sw2sim.check import GROUPS, all_rules
 
-DATA = Path(__file__).resolve().parents[2] / "_data" / "check_rules.json"
+from . import ROOT
+
+DATA = ROOT / "_data" / "check_rules.json"
 
 # Public reports cited in a rule's seen_in, by the short name used there.
 REPOSITORIES = {
