@@ -1,0 +1,54 @@
+"""The OpenGL platform is chosen in sw2sim.gl, and only there."""
+
+import re
+
+import pytest
+
+from repository import ROOT
+from sw2sim import gl
+
+
+def no_osmesa():
+    return False
+
+
+def osmesa():
+    return True
+
+
+@pytest.mark.parametrize("system, environ, has, expected", [
+    ("linux", {}, osmesa, "osmesa"),                          # a server or CI with libosmesa6
+    ("linux", {}, no_osmesa, "egl"),                          # where Mesa dropped OSMesa
+    ("linux", {"DISPLAY": ":0"}, osmesa, None),               # a desktop: MuJoCo's default
+    ("linux", {"WAYLAND_DISPLAY": "wayland-0"}, osmesa, None),
+    ("win32", {}, osmesa, None),                              # never EGL on Windows or macOS
+    ("darwin", {}, no_osmesa, None),
+    ("linux", {"MUJOCO_GL": "egl"}, osmesa, "egl"),           # the reader's own choice stays
+    ("win32", {"MUJOCO_GL": "glfw"}, osmesa, "glfw"),
+])
+def test_platform_for(system, environ, has, expected):
+    assert gl.platform_for(environ, system, has) == expected
+
+
+def test_choose_sets_only_what_it_chose():
+    desktop = {"DISPLAY": ":0"}
+    assert gl.choose(desktop) is None and "MUJOCO_GL" not in desktop
+    assert gl.choose({"MUJOCO_GL": "osmesa"}) == "osmesa"
+
+
+def test_no_other_module_sets_mujoco_gl():
+    assignment = re.compile(r"""(environ|env)(\[["']MUJOCO_GL["']\]\s*=(?!=)|\.setdefault\(\s*["']MUJOCO_GL)""")
+    offenders = []
+    for folder in ("sw2sim", "course", "tests", "tools", "examples"):
+        for path in (ROOT / folder).rglob("*.py"):
+            if path == ROOT / "sw2sim" / "gl.py" or "__pycache__" in path.parts:
+                continue
+            for n, line in enumerate(path.read_text(encoding="utf-8").splitlines(), 1):
+                if assignment.search(line):
+                    offenders.append(f"{path.relative_to(ROOT)}:{n}: {line.strip()}")
+    makefile = (ROOT / "Makefile").read_text(encoding="utf-8")
+    if re.search(r"^\s*export\s+MUJOCO_GL", makefile, re.M):
+        offenders.append("Makefile exports MUJOCO_GL")
+    # The viewer is the one exception: it draws in a window, through GLFW, by definition.
+    offenders = [o for o in offenders if not o.startswith("sw2sim/cli.py") or '"glfw"' not in o]
+    assert not offenders, "set MUJOCO_GL through sw2sim.gl only:\n" + "\n".join(offenders)
