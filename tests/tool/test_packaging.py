@@ -11,6 +11,7 @@ from __future__ import annotations
 import ast
 import os
 import re
+import shutil
 import subprocess
 import sys
 import tomllib
@@ -120,8 +121,15 @@ def test_every_declared_package_is_pinned_in_requirements_txt():
 def wheel(tmp_path_factory) -> Path:
     """The wheel `pip install .` builds, made offline with the pinned setuptools."""
     out = tmp_path_factory.mktemp("wheel")
+    # Built from a copy of what the sdist holds, so that setuptools' build/ folder stays
+    # out of the repository.
+    source = tmp_path_factory.mktemp("source")
+    for name in ("pyproject.toml", "README.md", "LICENSE"):
+        shutil.copy(ROOT / name, source / name)
+    shutil.copytree(ROOT / "sw2sim", source / "sw2sim",
+                    ignore=shutil.ignore_patterns("__pycache__"))
     done = subprocess.run([sys.executable, "-m", "pip", "wheel", "--no-deps", "--no-build-isolation",
-                           "--disable-pip-version-check", "-q", "-w", str(out), str(ROOT)],
+                           "--disable-pip-version-check", "-q", "-w", str(out), str(source)],
                           capture_output=True, text=True, timeout=300)
     assert done.returncode == 0, done.stderr
     (built,) = out.glob("sw2sim-*.whl")
