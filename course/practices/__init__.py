@@ -29,14 +29,14 @@ from .. import ROOT
 _FOLDER = re.compile(r"^practice_(?P<n>[1-9]\d*)$")
 
 
-def _discover() -> list[str]:
-    here = Path(__file__).parent
-    found = [(int(m["n"]), p.name) for p in here.iterdir()
+def discover(folder: Path = Path(__file__).parent) -> list[str]:
+    """The names of the practice_N packages in `folder`, in number order."""
+    found = [(int(m["n"]), p.name) for p in folder.iterdir()
              if p.is_dir() and (m := _FOLDER.match(p.name)) and (p / "__init__.py").is_file()]
     return [name for _, name in sorted(found)]
 
 
-PRACTICES: list[str] = _discover()
+PRACTICES: list[str] = discover()
 
 
 @dataclass(frozen=True)
@@ -77,6 +77,39 @@ class Practice:
     @property
     def test_file(self) -> Path:
         return ROOT / "tests" / "course" / f"test_{self.name}.py"
+
+    def missing(self) -> list[str]:
+        """What this practice lacks of the parts every practice has, each with where it
+        belongs; empty when it is whole."""
+        gaps = []
+        try:
+            module = self.design
+        except ImportError:
+            gaps.append(f"design: course/practices/{self.name}/design.py")
+        else:
+            for name in ("PACKAGE", "robot", "parts", "write"):
+                if not hasattr(module, name):
+                    gaps.append(f"design: {name} in course/practices/{self.name}/design.py")
+            package = ROOT / "examples" / getattr(module, "PACKAGE", f"example_{self.number}")
+            if not (package / "package.xml").is_file() or not list(package.glob("urdf/*.urdf")):
+                gaps.append(f"example package: {package.relative_to(ROOT)}/ "
+                            f"(write it with `python -m course.practices {self.name}`)")
+        try:
+            if not getattr(self.figures, "FIGURES", None):
+                gaps.append(f"figures: FIGURES in course/practices/{self.name}/figures.py")
+        except ImportError:
+            gaps.append(f"figures: course/practices/{self.name}/figures.py")
+        pages = sorted(self.pages_dir.glob("*.md"))
+        if not pages:
+            gaps.append(f"pages: _pages/{self.slug}/*.md")
+        navigation = (ROOT / "_data" / "navigation.yml").read_text(encoding="utf-8")
+        if f"/{self.slug}/" not in navigation:
+            gaps.append(f"navigation: an entry for /{self.slug}/ in _data/navigation.yml")
+        if not self.test_file.is_file():
+            gaps.append(f"tests: {self.test_file.relative_to(ROOT)}")
+        if pages and not list((ROOT / "notebooks").glob(f"{self.slug}-*.ipynb")):
+            gaps.append(f"notebook: notebooks/{self.slug}-*.ipynb (made by `python -m course`)")
+        return gaps
 
 
 def practices() -> list[Practice]:
