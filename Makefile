@@ -28,7 +28,7 @@ help:
 	@echo "make test    set up, build the site, then run every test"
 	@echo "make build   regenerate stale figures and build the site into _site/"
 	@echo "make site    build the site into _site/ from the figures as they are"
-	@echo "make media   regenerate figures and notebooks whose inputs changed, and the checker rules page data"
+	@echo "make media   regenerate what is stale: example packages, figures, Troubleshooting data, notebooks"
 	@echo "make clean   remove build outputs (keeps .venv and node_modules)"
 
 setup: $(STAMPS)/apt $(STAMPS)/browser $(STAMPS)/venv $(STAMPS)/npm
@@ -68,12 +68,10 @@ assets/vendor/.done: $(STAMPS)/npm tools/copy-vendor.sh
 	bash tools/copy-vendor.sh
 	@touch $@
 
-# Figures, the Troubleshooting page's data written from the checker's rules, then the
-# lesson notebooks (notebooks/; run again only when their code or its inputs changed).
+# Everything generated, in order: the example packages, the figures, the Troubleshooting
+# page's data, the lesson notebooks (python -m course; each step redoes only what is stale).
 media: setup
-	$(PY) -m course.media
-	$(PY) -m course.troubleshooting
-	$(PY) -m course.notebooks
+	$(PY) -m course
 
 # Figures first, then the site that shows them (a sub-make keeps that order under -j).
 build: media

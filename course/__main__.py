@@ -1,0 +1,48 @@
+"""Regenerate everything generated, in the order each step needs the last:
+
+1. the example packages, from the practices' designs   (python -m course.practices)
+2. the figures under media/, from the packages          (python -m course.media)
+3. the Troubleshooting page's data, from the rules      (python -m course.troubleshooting)
+4. the lesson notebooks, from the pages and packages    (python -m course.notebooks)
+
+Each step redoes only what is out of date. `--check` changes nothing: it lists what is
+stale and exits 1 if anything is. `make media` runs this.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+import time
+
+from . import media, notebooks, troubleshooting
+from .practices import __main__ as packages
+
+STEPS = [
+    ("example packages", packages.main),
+    ("figures", media.main),
+    ("troubleshooting data", troubleshooting.main),
+    ("notebooks", notebooks.main),
+]
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(prog="python -m course", description=__doc__.splitlines()[0])
+    parser.add_argument("--check", action="store_true",
+                        help="change nothing; list what is stale and exit 1 if anything is")
+    args = parser.parse_args(argv)
+    status = 0
+    for title, step in STEPS:
+        began = time.monotonic()
+        print(f"== {title}", flush=True)
+        result = step(["--check"] if args.check else [])
+        print(f"   ({time.monotonic() - began:.1f} s)", flush=True)
+        if result and not args.check:
+            print(f"python -m course: {title} failed; later steps were not run", file=sys.stderr)
+            return result
+        status = status or result
+    return status
+
+
+if __name__ == "__main__":
+    sys.exit(main())
