@@ -395,7 +395,7 @@ def test_internal_links_lead_to_a_page_and_heading(site, url):
 
 
 def test_troubleshooting_data_is_the_rule_registry():
-    from sw2sim.check import troubleshooting
+    from course import troubleshooting
     assert troubleshooting.main(["--check"]) == 0, (
         "_data/check_rules.json is stale: run `python -m course.troubleshooting`")
 
