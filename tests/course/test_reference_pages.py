@@ -12,6 +12,7 @@ import contextlib
 import html
 import io
 import re
+import subprocess
 import sys
 from pathlib import Path
 
@@ -26,7 +27,7 @@ from course.practices import PRACTICES, design
 from sw2sim.ros_control import read_joint_limits
 from course.snippets import DEFAULT_TIMEOUT, parse_page
 
-from repository import ROOT
+from repository import ROOT, practice_numbers
 PAGES = ROOT / "_pages" / "reference"
 EXAMPLE_3 = ROOT / "examples" / "example_3"
 # The reference pages of this file, in reading order: (file, address).
@@ -323,10 +324,14 @@ def test_writing_a_lesson_commands_exist():
     assert {"test", "serve", "build", "media"} <= targets
     for target in targets:
         assert re.search(rf"^{target}:", makefile, re.M), f"no `make {target}`"
-    media = (ROOT / "sw2sim" / "media.py").read_text()
-    for option in set(re.findall(r"sw2sim\.media (--\w+)", text)):
-        assert f'"{option}"' in media, option
-    snippets = (ROOT / "sw2sim" / "snippets" / "__main__.py").read_text()
+    for module, options in (("media", re.findall(r"course\.media (--\w+)", text)),
+                            ("__main__", re.findall(r"-m course (--\w+)", text))):
+        assert options or module == "media", f"the page shows no `python -m course` option"
+        for option in set(options):
+            done = subprocess.run([sys.executable, "-m", "course" if module == "__main__" else f"course.{module}",
+                                   "--help"], cwd=ROOT, capture_output=True, text=True, timeout=120)
+            assert option in done.stdout, f"python -m course{'' if module == '__main__' else '.' + module} has no {option}"
+    snippets = (ROOT / "course" / "snippets" / "__main__.py").read_text()
     assert "--timeout 30" in text and '"--timeout"' in snippets
     assert f"Each block gets {DEFAULT_TIMEOUT:g} s" in text
     assert "make test" in (ROOT / ".ci" / "run").read_text()
@@ -337,6 +342,7 @@ def test_writing_a_lesson_commands_exist():
 def test_writing_a_lesson_describes_the_practice_registry():
     text = page("07-writing-a-lesson.md")
     assert "`PRACTICES`" in text and PRACTICES == [f"practice_{n}" for n in practice_numbers()]
+    assert "finds every\n`practice_N` folder" in text and "Register it" not in text
     for practice in PRACTICES:
         module = design(practice)
         assert module.PACKAGE == practice.replace("practice", "example")

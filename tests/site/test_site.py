@@ -389,3 +389,14 @@ def test_figures_carry_their_own_width_and_height(site):
             assert f'width="{width}" height="{height}"' in tag, f"{page}: {tag}"
             checked += 1
     assert checked > 20
+
+
+def test_the_home_page_lists_every_practice_from_the_navigation(site, sources):
+    from course.practices import practices
+    home = (site / "index.html").read_text(encoding="utf-8")
+    listed = between(home, 'id="the-practices"', "</ol>")
+    for practice in practices():
+        [section] = [s for s in sources["nav"] if s["title"].startswith(f"Practice {practice.number}:")]
+        first = section["children"][0]["url"]
+        assert f'href="{first}"' in listed, f"the home page does not list Practice {practice.number}"
+        assert html.escape(section["summary"], quote=False) in listed
