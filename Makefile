@@ -91,9 +91,11 @@ serve: build
 	@echo "Serving at http://$(HOST):$(PORT) (Ctrl-C to stop)"
 	bundle exec jekyll serve --skip-initial-build --no-watch --host $(HOST) --port $(PORT)
 
-# tests/browser/ reads the _site that `site` just built.
+# tests/site/browser/ reads the _site that `site` just built. The tests run on every core,
+# a test module to a worker (its module fixtures run the slow jobs once, ahead of its tests).
+TEST_JOBS ?= auto
 test: site
-	$(PY) -m pytest
+	$(PY) -m pytest -n $(TEST_JOBS) --dist loadscope
 
 clean:
 	rm -rf _site .jekyll-cache .pytest_cache MUJOCO_LOG.TXT assets/vendor

@@ -5,12 +5,15 @@ more cores, starting them together for the whole module, then letting every test
 its own result, takes a fraction of the time of making them one after the other.
 """
 
-from course.media import cores
+import os
 
 
 def workers() -> int:
-    """How many jobs to run at once: the cores this process may use, at most four."""
-    return max(1, min(4, cores()))
+    """How many jobs to run at once: this worker's share of the cores (pytest-xdist runs
+    one test process per core already), at most four."""
+    cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1
+    share = cores // int(os.environ.get("PYTEST_XDIST_WORKER_COUNT", "1"))
+    return max(1, min(4, share))
 
 
 def selected(request, test_name: str, param: str) -> list:
