@@ -15,7 +15,7 @@ from pathlib import Path
 import nbformat
 import pytest
 
-from sw2sim import notebooks
+from course import notebooks
 from course.notebooks import FOLDER, SETUP_CODE, build, code_cells, notebook_file
 from course.snippets import find_pages, parse_page
 

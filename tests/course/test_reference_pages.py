@@ -117,10 +117,10 @@ def test_getting_started_states_the_project_set_up():
     assert '"mujoco>=4.0"' in pyproject and "MuJoCo 4.0 or newer" in text
     makefile = (ROOT / "Makefile").read_text()
     for command in ("pip install -q --disable-pip-version-check -r requirements.txt",
-                    "pip install -q --disable-pip-version-check --no-deps -e ."):
+                    "pip install -q --disable-pip-version-check --no-deps --no-build-isolation -e ."):
         assert command in makefile, command
     assert ".venv/bin/pip install -r requirements.txt" in text
-    assert ".venv/bin/pip install --no-deps -e ." in text
+    assert ".venv/bin/pip install --no-deps --no-build-isolation -e ." in text
     apt = re.search(r"APT_PACKAGES := (.*?)\n\n", makefile, re.S).group(1)
     for package in ("libosmesa6", "liburdfdom-tools", "jekyll"):
         assert package in apt and package in text.lower(), package
