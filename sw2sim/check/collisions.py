@@ -20,8 +20,8 @@ import manifold3d
 import numpy as np
 
 from .findings import WARNING, rule
-from .meshes import FAR, Piece, closed_solid, link_geometry, origin_matrix
-from .structure import source_line
+from .geometry import FAR, Piece, Tree, closed_solid, link_geometry, origin_matrix
+from .urdf import source_line
 
 # Overlaps smaller than either of these are contact, not interpenetration.
 MIN_SHARE = 0.01        # of the smaller part's volume
@@ -57,106 +57,6 @@ rule("collision-hull-contact", WARNING, "collision", "MuJoCo makes two links tou
          "few <box> elements for a fork), or tell MuJoCo to ignore the pair: "
          "spec.add_exclude(bodyname1=..., bodyname2=...) or <contact><exclude .../>.",
      seen_in=("mujoco#1751", "solidworks_urdf_exporter#97"))
-
-
-class Tree:
-    """The links as the joints connect them, and where each one is at the rest pose.
-
-    Robust to broken input (structure.py reports it): a link that is the child of two
-    joints keeps the first, a cycle ends the walk up the tree, and long chains are walked
-    without recursion.
-    """
-
-    def __init__(self, ctx):
-        self.links = ctx.links
-        self._joint: dict[str, object] = {}
-        for joint in ctx.robot.findall("joint"):
-            parent, child = joint.find("parent"), joint.find("child")
-            if parent is None or child is None:
-                continue
-            if parent.get("link") in self.links and child.get("link") in self.links:
-                self._joint.setdefault(child.get("link"), joint)
-        self._body: dict[str, str | None] = {}
-        self._poses: dict[str, np.ndarray | None] = {}
-        self._members: dict[str | None, list[str]] | None = None
-
-    def parent(self, name: str | None) -> str | None:
-        joint = self._joint.get(name)
-        return None if joint is None else joint.find("parent").get("link")
-
-    def joint_name(self, name: str) -> str:
-        joint = self._joint.get(name)
-        return "" if joint is None else joint.get("name", "")
-
-    def moves(self, name: str) -> bool:
-        """Whether the joint above the link lets it move relative to its parent."""
-        joint = self._joint.get(name)
-        return joint is not None and joint.get("type") != "fixed"
-
-    def _upwards(self, name: str, known: dict) -> tuple[list[str], bool]:
-        """The links from `name` upwards that `known` lacks, and whether the walk stopped at
-        a known link (True) rather than at the root or a cycle (False)."""
-        path, seen = [], set()
-        while name is not None and name not in known:
-            if name in seen:
-                return path, False
-            seen.add(name)
-            path.append(name)
-            name = self.parent(name)
-        return path, name is not None
-
-    def body(self, name: str | None) -> str | None:
-        """The moving link whose rigid body `name` belongs to (itself, or the nearest link
-        above it whose joint is not fixed); None when it is welded to the world."""
-        if name is None:
-            return None
-        path, stopped = self._upwards(name, self._body)
-        found = self._body[self.parent(path[-1])] if stopped and path else None
-        for link in reversed(path):  # from the top down
-            found = link if self.moves(link) else found
-            self._body[link] = found
-        return self._body.get(name)
-
-    def rigid_body(self, head: str) -> list[str]:
-        """The links that move as one with `head`: it and those fixed to it."""
-        if self._members is None:
-            self._members = {}
-            for name in self.links:
-                self._members.setdefault(self.body(name), []).append(name)
-        return self._members.get(head, [])
-
-    def pose(self, name: str) -> np.ndarray | None:
-        """The link's pose in the root's frame with every joint at zero; None when an origin
-        on the way is malformed or the joints form a cycle."""
-        path, stopped = self._upwards(name, self._poses)
-        if stopped:
-            pose = self._poses[self.parent(path[-1])] if path else self._poses[name]
-        else:
-            cycle = bool(path) and self.parent(path[-1]) is not None
-            pose = None if cycle else np.eye(4)
-        for link in reversed(path):  # from the top down
-            joint = self._joint.get(link)
-            if joint is not None:
-                local = origin_matrix(joint)
-                pose = None if pose is None or local is None else pose @ local
-            self._poses[link] = pose
-        return self._poses.get(name)
-
-    def mujoco_ignores(self, a: str, b: str) -> bool:
-        """Whether MuJoCo, with the model as sw2sim.load_package builds it, never looks for
-        contacts between links a and b.
-
-        MuJoCo skips pairs within one rigid body, and a body and its parent body unless the
-        parent is welded to the world; load_package also skips a link welded to the world
-        and each link it carries directly.
-        """
-        body_a, body_b = self.body(a), self.body(b)
-        if body_a == body_b:
-            return True
-        if body_a is not None and body_b is not None:
-            return self.body(self.parent(body_a)) == body_b or \
-                self.body(self.parent(body_b)) == body_a
-        return (body_a is None and self.parent(b) == a) or (body_b is None and self.parent(a) == b)
 
 
 def check(ctx) -> None:

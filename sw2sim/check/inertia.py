@@ -17,10 +17,10 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.spatial import ConvexHull, QhullError
 
-from .collisions import Tree
+
 from .findings import ERROR, WARNING, rule
-from .meshes import closed_solid, link_geometry, origin_matrix
-from .structure import number, source_line
+from .geometry import INERTIA_TERMS, Inertial, Tree, closed_solid, inertial_of, link_geometry, origin_matrix
+from .urdf import number, source_line
 
 # MuJoCo's smallest mass or principal moment of inertia (mjMINVAL).
 MJMINVAL = 1e-15
@@ -35,7 +35,6 @@ TRIANGLE_SLACK = 1e-9
 # Densities outside this range belong to no solid material (the lightest foams are about
 # 10 kg/m^3, osmium, the densest element, 22,600 kg/m^3).
 DENSITY_RANGE = (10.0, 25_000.0)
-INERTIA_TERMS = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
 
 rule("inertial-missing", WARNING, "inertia", "A moving link has no <inertial>",
      symptom="MuJoCo gives the link a mass computed from its collision geometry as if it were "
@@ -104,58 +103,6 @@ rule("density-implausible", WARNING, "inertia", "The mass does not fit the mesh'
      fix="Compare the link's mass with its volume in SolidWorks' Mass Properties and set the "
          "part's material, or correct the mass.",
      seen_in=("solidworks_urdf_exporter#101", "solidworks_urdf_exporter#164"))
-
-
-@dataclass(frozen=True)
-class Inertial:
-    """A link's <inertial>, with what could be read from it (None where a value is absent or
-    malformed; structure.py reports malformed numbers)."""
-
-    element: object
-    mass: float | None
-    centre: np.ndarray | None      # the centre of mass in the link's frame
-    tensor: np.ndarray | None      # 3 x 3, about the centre of mass, in the link's axes
-    missing: tuple[str, ...]       # what is absent: "<mass>", "<inertia>", "ixy", ...
-
-    @property
-    def spread(self) -> float | None:
-        """The root-mean-square distance of the mass from the centre of mass, in metres."""
-        if self.tensor is None or not self.mass or self.mass <= 0:
-            return None
-        trace = float(np.trace(self.tensor))
-        return math.sqrt(trace / (2 * self.mass)) if trace > 0 else None
-
-
-def inertial_of(link) -> Inertial | None:
-    """The link's first <inertial>, read; None when it has none."""
-    element = link.find("inertial")
-    if element is None:
-        return None
-    missing = []
-    mass_el = element.find("mass")
-    if mass_el is None or mass_el.get("value") is None:
-        missing.append("<mass value>")
-    mass = None if mass_el is None else number(mass_el.get("value"))
-    inertia_el = element.find("inertia")
-    terms = {}
-    if inertia_el is None:
-        missing.append("<inertia>")
-    else:
-        for term in INERTIA_TERMS:
-            if inertia_el.get(term) is None:
-                missing.append(term)
-            terms[term] = number(inertia_el.get(term))
-    pose = origin_matrix(element)
-    tensor = None
-    if pose is not None and terms and None not in terms.values():
-        t = terms
-        local = np.array([[t["ixx"], t["ixy"], t["ixz"]],
-                          [t["ixy"], t["iyy"], t["iyz"]],
-                          [t["ixz"], t["iyz"], t["izz"]]])
-        turn = pose[:3, :3]
-        tensor = turn @ local @ turn.T
-    centre = None if pose is None else pose[:3, 3].copy()
-    return Inertial(element, mass, centre, tensor, tuple(missing))
 
 
 def check(ctx) -> None:

@@ -12,7 +12,7 @@ from __future__ import annotations
 import math
 
 from .findings import ERROR, WARNING, rule
-from .structure import number, source_line, vector
+from .urdf import number, source_line, vector
 
 # Joint types whose <axis> is used, whose <limit> is required, and that a motor can drive.
 AXIS_TYPES = ("revolute", "continuous", "prismatic", "planar")

@@ -24,13 +24,12 @@ from trimesh.transformations import euler_matrix
 
 from .context import display
 from .findings import ERROR, WARNING, rule
-from .structure import number, owner, source_line, vector
+from .geometry import FAR, STL_FACE_LIMIT, millimetre_suspect
+from .urdf import number, owner, source_line, vector
 
 # MuJoCo 4 decodes binary STL, OBJ and its own MSH; anything else stops the compile with
 # "no decoder found for mesh file".
 MUJOCO_FORMATS = (".stl", ".obj", ".msh")
-# MuJoCo's STL decoder refuses files with more triangles than this (mujoco#327).
-STL_FACE_LIMIT = 200_000
 # A collision mesh with more triangles than this is worth simplifying: MuJoCo collides its
 # convex hull anyway, so the detail only costs compile time (a 300,000-face mesh takes
 # seconds), and in Gazebo every triangle costs time at every step. A coarse SolidWorks
@@ -38,9 +37,6 @@ STL_FACE_LIMIT = 200_000
 HEAVY_FACES = 20_000
 # Thinner than this fraction of its size, a mesh is flat: MuJoCo cannot build its hull.
 FLAT = 1e-6
-# Geometry placed farther out than this (in metres) is not measured: such numbers are
-# typos, and hulls and mesh booleans lose their precision there.
-FAR = 1e5
 
 rule("mesh-no-filename", ERROR, "mesh", "A <mesh> has no filename",
      symptom="MuJoCo stops with an error about the mesh; ROS refuses the URDF.",
@@ -349,36 +345,6 @@ def _flatness(vertices: np.ndarray) -> str | None:
 
 # -- units and weight --------------------------------------------------------------------
 
-def millimetre_suspect(link, mesh: trimesh.Trimesh) -> str | None:
-    """Why `mesh` (in metres as the URDF scales it) looks like millimetres, or None.
-
-    A link's inertia says how far its mass lies from its centre: with mass m and moments
-    Ixx, Iyy, Izz about the centre of mass, r = sqrt((Ixx + Iyy + Izz) / (2 m)) is the
-    root-mean-square distance of the mass from the centre. A mesh that holds that mass is
-    a few times r across: its bounding-box diagonal d is 3 to 6 r for solids, plates and
-    rods, and rarely above 50 r even for a heavy core with a long light arm. A mesh in
-    millimetres is read 1000 times too large, so d / r lands near 1000 times those values.
-    The warning needs d / 1000 to agree with r again (0.3 r to 60 r): a mesh that is merely
-    odd, or an inertia that is itself wrong, does not pass for millimetres. A link without
-    a usable inertia is judged by size alone: over 10 m across.
-    """
-    from .inertia import inertial_of  # inertia.py builds on this module
-
-    if len(mesh.vertices) == 0:
-        return None
-    diagonal = float(np.linalg.norm(mesh.extents))
-    inertial = inertial_of(link)
-    spread = None if inertial is None else inertial.spread
-    if spread:
-        ratio = diagonal / spread
-        if 300 <= ratio <= 60_000:
-            return (f"it is {diagonal:.3g} m across, while the link's inertia puts its mass "
-                    f"within about {spread:.3g} m of the centre of mass ({ratio:.0f} times less)")
-        return None
-    if diagonal > 10:
-        return f"it is {diagonal:.3g} m across"
-    return None
-
 
 def _units(ctx, link, readable: set) -> None:
     seen = set()
@@ -413,121 +379,4 @@ def _heavy_collision(ctx, link, readable: set) -> None:
 
 # -- geometry for the other checks -------------------------------------------------------
 
-@dataclass(frozen=True)
-class Piece:
-    """One <visual> or <collision> of a link, as a triangle mesh in the link's frame."""
 
-    element: object             # the <visual> or <collision> element
-    shape: object               # its <mesh>, <box>, <cylinder> or <sphere>
-    mesh: trimesh.Trimesh       # metres, link frame, vertices merged; its own copy
-    pose: np.ndarray            # the element's <origin>: where `local` sits in the link
-    local: trimesh.Trimesh      # the shape in its own frame, shared: never change it
-
-
-def link_geometry(ctx, link, kind: str = "collision") -> list[Piece] | None:
-    """The link's <visual> or <collision> geometry in its frame; [] when it has none, and
-    None when some of it cannot be known (a missing or unreadable mesh, a malformed origin
-    or size, a mesh that looks like millimetres or has more triangles than MuJoCo reads):
-    then checks that need all of it skip."""
-    pieces = []
-    for element in link.findall(kind):
-        geometry = element.find("geometry")
-        shape = None if geometry is None else next(
-            (s for s in geometry if s.tag in ("mesh", "box", "cylinder", "sphere")), None)
-        pose = origin_matrix(element)
-        local = None if shape is None else _shape_mesh(ctx, link, shape)
-        if local is None or pose is None:
-            return None
-        mesh = local.copy()
-        mesh.apply_transform(pose)
-        if not np.all(np.abs(mesh.vertices) < FAR):
-            return None
-        pieces.append(Piece(element, shape, mesh, pose, local))
-    return pieces
-
-
-def origin_matrix(element) -> np.ndarray | None:
-    """The 4 x 4 pose given by an element's <origin> (identity without one); None when a
-    number in it is malformed (structure.py reports that)."""
-    origin = element.find("origin")
-    if origin is None:
-        return np.eye(4)
-    xyz = vector(origin.get("xyz", "0 0 0"), 3)
-    rpy = vector(origin.get("rpy", "0 0 0"), 3)
-    if xyz is None or rpy is None:
-        return None
-    pose = euler_matrix(*rpy, "sxyz")  # URDF: roll about x, then pitch about y, then yaw about z
-    pose[:3, 3] = xyz
-    return pose
-
-
-# Each context's meshes with their vertices merged (the context reads them unmerged), by
-# file and scale: closed meshes are then recognised as closed, and merging is done once.
-_merged: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
-
-
-def _shape_mesh(ctx, link, shape) -> trimesh.Trimesh | None:
-    """The shape as a mesh in its own frame (shared: copy it before changing it)."""
-    if shape.tag == "mesh":
-        cache = _merged.setdefault(ctx, {})
-        key = (ctx.mesh_file(shape), shape.get("scale"))
-        if key not in cache:
-            mesh = ctx.mesh(shape)
-            if mesh is not None and np.isfinite(mesh.vertices).all():
-                mesh = mesh.copy()
-                mesh.merge_vertices()
-            else:
-                mesh = None
-            cache[key] = mesh
-        mesh = cache[key]
-        # Beyond MuJoCo's STL limit the model does not load, and measuring would take seconds.
-        if mesh is None or len(mesh.faces) > STL_FACE_LIMIT or millimetre_suspect(link, mesh):
-            return None
-        return mesh
-    if shape.tag == "box":
-        size = vector(shape.get("size"), 3)
-        return trimesh.creation.box(extents=size) if size and _sizes_ok(*size) else None
-    radius = number(shape.get("radius"))
-    if shape.tag == "sphere":
-        return trimesh.creation.icosphere(subdivisions=3, radius=radius) \
-            if _sizes_ok(radius) else None
-    length = number(shape.get("length"))
-    if not _sizes_ok(radius, length):
-        return None
-    return trimesh.creation.cylinder(radius=radius, height=length, sections=48)
-
-
-def _sizes_ok(*sizes) -> bool:
-    """Whether every size of a primitive is one this check can mesh: above a nanometre, below
-    FAR (smaller or larger ones are typos that other rules or MuJoCo report)."""
-    return all(size is not None and 1e-9 < size < FAR for size in sizes)
-
-
-# Each shared shape mesh as a closed solid (or False), so that a file is built once.
-_solids: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
-
-
-def closed_solid(piece: Piece, pose: np.ndarray | None = None) -> manifold3d.Manifold | None:
-    """The piece as a closed solid, in the link's frame or moved on by `pose`; None when
-    its mesh is not closed."""
-    if piece.local not in _solids:
-        _solids[piece.local] = _as_solid(piece.local) or False
-    solid = _solids[piece.local]
-    if not solid:
-        return None
-    place = piece.pose if pose is None else pose @ piece.pose
-    return solid.transform(place[:3, :4])
-
-
-def _as_solid(mesh: trimesh.Trimesh) -> manifold3d.Manifold | None:
-    """The mesh as a manifold3d solid when it is closed, without self-contradicting edges,
-    and outward-facing (positive volume); None for an open, inverted or broken mesh."""
-    try:
-        solid = manifold3d.Manifold(manifold3d.Mesh64(
-            vert_properties=np.asarray(mesh.vertices, dtype=np.float64),
-            tri_verts=np.asarray(mesh.faces, dtype=np.uint64)))
-    except Exception:  # noqa: BLE001  (manifold3d refuses malformed arrays)
-        return None
-    if solid.status() != manifold3d.Error.NoError or solid.volume() <= 0:
-        return None
-    return solid

@@ -15,7 +15,7 @@ from lxml import etree
 
 from ..loader import _parser
 from .findings import ERROR, WARNING, rule
-from .structure import owner, source_line
+from .urdf import owner, source_line
 
 # catkin's rules for package names (catkin_pkg, REP 144): a name outside LENIENT_NAME is
 # refused; one outside VALID_NAME is accepted with a warning, for old packages' sake.

@@ -15,7 +15,7 @@ from repository import practice_numbers
 
 from sw2sim import load_package
 from sw2sim.check import all_rules, check, open_package
-from sw2sim.check.collisions import Tree
+from sw2sim.check.geometry import Tree
 
 GROUP = "collision"
 # Example 3's end_arm_link gets a 2 cm cube that sits in the hollow of base_link's convex

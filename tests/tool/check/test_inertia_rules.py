@@ -13,7 +13,7 @@ from repository import practice_numbers
 
 from sw2sim import LoadError, load_package
 from sw2sim.check import RULES, all_rules, check
-from sw2sim.check.inertia import inertial_of
+from sw2sim.check.geometry import inertial_of
 
 GROUP = "inertia"
 # Example 1's first wheel, front_left_wheel (all four wheels share these values).

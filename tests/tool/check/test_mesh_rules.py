@@ -16,7 +16,8 @@ from packages import EXAMPLES, copy_example, edit, fires_at, group_findings, lin
 from repository import practice_numbers
 
 from sw2sim.check import all_rules, check
-from sw2sim.check.meshes import _flatness, millimetre_suspect
+from sw2sim.check.geometry import millimetre_suspect
+from sw2sim.check.meshes import _flatness
 
 GROUP = "mesh"
 STL = "package://example_1/meshes/base_link.STL"

@@ -10,7 +10,7 @@ from packages import (EXAMPLES, copy_example, edit, edit_re, fires_at,
 from repository import practice_numbers
 
 from sw2sim.check import all_rules, check, open_package, structure
-from sw2sim.check.structure import number, vector
+from sw2sim.check.urdf import number, vector
 from course.exporter_format import urdf_text
 from course.practices import PRACTICES, design
 
