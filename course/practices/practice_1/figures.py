@@ -108,7 +108,7 @@ def wheel_velocity(path: Path) -> None:
 
 
 MEDIA = "media/practice-1"
-DESIGN = ["course/practices/practice_1/design.py", "course/parts.py", "course/drawing.py",
+DESIGN = ["course/practices/practice_1/design.py", "course/parts.py", "course/drawing",
           "course/practices/shared.py"]
 SIM = [PACKAGE, "sw2sim/loader.py", "sw2sim/render.py", "course/plotting.py"]
 

@@ -226,7 +226,7 @@ def friction_velocity(path: Path) -> None:
 
 MEDIA = "media/practice-2"
 DESIGN = ["course/practices/practice_2/design.py", "course/practices/practice_1/design.py",
-          "course/parts.py", "course/drawing.py",
+          "course/parts.py", "course/drawing",
           "course/practices/shared.py"]
 SIM = [PACKAGE, "sw2sim/loader.py", "sw2sim/render.py", "course/plotting.py"]
 PULSE = [PULSE_SCRIPT]

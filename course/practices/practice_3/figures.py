@@ -148,7 +148,7 @@ def setpoints(path: Path) -> None:
 
 
 MEDIA = "media/practice-3"
-DESIGN = ["course/practices/practice_3/design.py", "course/parts.py", "course/drawing.py",
+DESIGN = ["course/practices/practice_3/design.py", "course/parts.py", "course/drawing",
           "course/practices/shared.py"]
 SIM = [PACKAGE, "sw2sim/loader.py", "sw2sim/ros_control.py", "sw2sim/render.py", "course/plotting.py"]
 

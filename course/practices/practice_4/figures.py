@@ -207,7 +207,7 @@ def _box(x, y, w, h, colour):
 
 
 MEDIA = "media/practice-4"
-DESIGN = ["course/practices/practice_4/design.py", "course/parts.py", "course/drawing.py",
+DESIGN = ["course/practices/practice_4/design.py", "course/parts.py", "course/drawing",
           "course/practices/shared.py"]
 SIM = [PACKAGE, "examples/example_3/scripts/arm_controller.py", "sw2sim/loader.py",
        "sw2sim/ros_control.py", "sw2sim/render.py", "course/plotting.py"]

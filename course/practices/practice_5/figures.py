@@ -174,7 +174,7 @@ def not_ideal(path: Path) -> None:
 
 
 MEDIA = "media/practice-5"
-DESIGN = ["course/practices/practice_5/design.py", "course/parts.py", "course/drawing.py",
+DESIGN = ["course/practices/practice_5/design.py", "course/parts.py", "course/drawing",
           "course/practices/shared.py"]
 SIM = [PACKAGE, "sw2sim/loader.py", "sw2sim/ros_control.py", "sw2sim/render.py", "course/plotting.py"]
 
