@@ -27,7 +27,7 @@ from pathlib import Path
 import mujoco
 import numpy as np
 
-from .loader import find_package
+from .package import Package, as_package
 from .ros_control import read_controllers, read_joint_limits, read_transmissions
 
 POSITION_PID = "effort_controllers/JointPositionController"
@@ -51,13 +51,13 @@ class Actuator:
     dropped: tuple[str, ...] = ()   # settings of the source MuJoCo has no place for
 
 
-def controllers(path: str | os.PathLike) -> dict[str, tuple[dict, Path]]:
+def controllers(source: str | os.PathLike | Package) -> dict[str, tuple[dict, Path]]:
     """The joint controllers in the package's config/*.yaml: name -> (settings, file).
 
     Controllers may sit at the top level or under one namespace (the robot's name, as
     the exporter's launch files use). Raises LoadError for a YAML file that is not valid.
     """
-    root = find_package(path).root
+    root = as_package(source).root
     found: dict[str, tuple[dict, Path]] = {}
     files = sorted((root / "config").glob("*.yaml")) + sorted((root / "config").glob("*.yml"))
     for file in files:
@@ -89,19 +89,20 @@ def _gain(pid, key: str) -> float | None:
     return value if math.isfinite(value) else None
 
 
-def add_actuators(spec: mujoco.MjSpec, path: str | os.PathLike, *,
+def add_actuators(spec: mujoco.MjSpec, source: str | os.PathLike | Package, *,
                   sliders: bool = False) -> tuple[list[Actuator], list[str]]:
-    """Add actuators to `spec` for the package at `path`.
+    """Add actuators to `spec` for the package at `source` (a path or a Package).
 
     Returns the actuators in `data.ctrl` order, and a sentence for each controller or
     transmission that was left out, and why. Raises LoadError when the URDF's limits,
     the transmissions or the YAML cannot be read.
     """
-    root = find_package(path).root
+    package = as_package(source)
+    root = package.root
     model = spec.compile()
     moving = (int(mujoco.mjtJoint.mjJNT_HINGE), int(mujoco.mjtJoint.mjJNT_SLIDE))
     joints = {model.joint(j).name: j for j in range(model.njnt) if model.jnt_type[j] in moving}
-    limits = read_joint_limits(path)
+    limits = read_joint_limits(package)
     inertia = joint_inertia(model)
     added: list[Actuator] = []
     skipped: list[str] = []
@@ -139,7 +140,7 @@ def add_actuators(spec: mujoco.MjSpec, path: str | os.PathLike, *,
         added.append(Actuator(name, joint, kind, source, words, ctrl, force, tuple(dropped)))
         driven.add(joint)
 
-    for name, (settings, file) in controllers(path).items():
+    for name, (settings, file) in controllers(package).items():
         joint, kind = settings["joint"], settings.get("type")
         where = file.relative_to(root).as_posix()
         pid = settings.get("pid")
@@ -171,7 +172,7 @@ def add_actuators(spec: mujoco.MjSpec, path: str | os.PathLike, *,
             place(name, joint, "velocity", source, {"kv": p}, velocity(joint), effort(joint),
                   dropped)
 
-    for t in read_transmissions(path):
+    for t in read_transmissions(package):
         if t.joint in driven:
             continue
         if t.joint not in joints or t.reduction == 0:

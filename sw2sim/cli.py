@@ -1,7 +1,9 @@
 """The `sw2sim` command: check, convert, view and render an exported package.
 
-Every command takes the package folder (the one holding package.xml) or its .urdf file.
-MuJoCo is imported only inside a command: `view` must choose its GL platform first.
+Every command takes the package folder (the one holding package.xml) or its .urdf file,
+reads it once (`sw2sim.package.find_package`, inside the check every command starts with)
+and hands the Package on. MuJoCo is imported only inside a command: `view` must choose its
+GL platform first.
 """
 
 from __future__ import annotations
@@ -197,7 +199,7 @@ def _check(args) -> int:
 
 # -- convert ---------------------------------------------------------------------------
 def _convert(args) -> int:
-    from .check import check
+    from .check import check_package
     out = Path(args.output)
     if out.exists() and not out.is_dir():
         _say(f"sw2sim convert: {out} is a file; give a folder to write the model into.")
@@ -207,7 +209,8 @@ def _convert(args) -> int:
              "folder, or add --force to replace the files convert writes there (other files "
              "are left alone).")
         return EXIT_UNUSABLE
-    report = check(args.path)
+    checked = check_package(args.path)
+    report = checked.report
     if report.status != EXIT_OK:
         print(report.format())
         _say("sw2sim convert: not converted; fix the errors above and run it again.")
@@ -216,10 +219,10 @@ def _convert(args) -> int:
         print(report.format())
     from .check.stability import mujoco_warnings
     from .convert import OutputNotEmpty, convert
-    from .loader import LoadError
+    from .package import LoadError
     try:
         with mujoco_warnings():   # the check has reported them; no MUJOCO_LOG.TXT here
-            result = convert(args.path, out, force=args.force)
+            result = convert(checked.package, out, force=args.force)
     except LoadError as exc:
         _say(f"sw2sim convert: {exc}")
         return EXIT_ERRORS
@@ -271,10 +274,11 @@ def _model(args, *, sliders: bool = False, size: tuple[int, int] | None = None):
     are printed and the model is still loaded, since looking at it is how to find
     what they mean.
     """
-    from .check import check
+    from .check import check_package
     from .check.stability import mujoco_warnings
-    from .loader import LoadError
-    report = check(args.path, stability=False)
+    from .package import LoadError
+    checked = check_package(args.path, stability=False)
+    report = checked.report
     if report.status == EXIT_UNUSABLE:
         print(report.format())
         return EXIT_UNUSABLE
@@ -282,7 +286,7 @@ def _model(args, *, sliders: bool = False, size: tuple[int, int] | None = None):
         print(report.format())
     try:
         with mujoco_warnings():   # the check has reported them; no MUJOCO_LOG.TXT here
-            return _compiled(args.path, sliders, size)
+            return _compiled(checked.package, sliders, size)
     except LoadError as exc:
         _say(f"sw2sim {args.command}: {exc}")
         return EXIT_ERRORS
@@ -292,17 +296,18 @@ def _model(args, *, sliders: bool = False, size: tuple[int, int] | None = None):
         return EXIT_ERRORS
 
 
-def _compiled(path: str, sliders: bool, size: tuple[int, int] | None):
+def _compiled(package, sliders: bool, size: tuple[int, int] | None):
     from .actuators import add_actuators
-    from .loader import LoadError, load_package, world_fixed
-    fixed = world_fixed(path)
-    spec = load_package(path, fixed_base=fixed)
+    from .loader import load_package
+    from .package import LoadError
+    fixed = package.world_fixed
+    spec = load_package(package, fixed_base=fixed)
     if sliders:
         try:
-            add_actuators(spec, path, sliders=True)
+            add_actuators(spec, package, sliders=True)
         except LoadError as exc:
             print(f"no sliders: {exc}")
-            spec = load_package(path, fixed_base=fixed)
+            spec = load_package(package, fixed_base=fixed)
     if size is not None:
         spec.visual.global_.offwidth = max(spec.visual.global_.offwidth, size[0])
         spec.visual.global_.offheight = max(spec.visual.global_.offheight, size[1])

@@ -24,8 +24,8 @@ import numpy as np
 from lxml import etree
 
 from .actuators import Actuator, add_actuators
-from .loader import LoadError, _lowest_collision_point, _parser, find_package, load_package
-from .loader import world_fixed
+from .loader import load_package, lowest_collision_point
+from .package import LoadError, Package, as_package
 from .ros_control import read_joint_limits
 
 SCENE = "scene.xml"
@@ -58,9 +58,9 @@ def file_stem(name: str) -> str:
     return "robot" if stem.lower() == Path(SCENE).stem else stem
 
 
-def convert(path: str | os.PathLike, folder: str | os.PathLike, *,
+def convert(source: str | os.PathLike | Package, folder: str | os.PathLike, *,
             force: bool = False) -> Conversion:
-    """Write the model folder for the package at `path` into `folder`.
+    """Write the model folder for the package at `source` (a path or a Package) into `folder`.
 
     Raises LoadError when the package cannot be loaded, OutputNotEmpty when `folder`
     holds files and `force` is false, and OSError when it cannot be written. With
@@ -72,10 +72,10 @@ def convert(path: str | os.PathLike, folder: str | os.PathLike, *,
     if folder.is_dir() and any(folder.iterdir()) and not force:
         raise OutputNotEmpty(f"{folder} is not empty")
 
-    package = find_package(path)
-    fixed = world_fixed(path)
-    spec = load_package(path, fixed_base=fixed, scene=False)
-    actuators, skipped = add_actuators(spec, path)
+    package = as_package(source)
+    fixed = package.world_fixed
+    spec = load_package(package, fixed_base=fixed, scene=False)
+    actuators, skipped = add_actuators(spec, package)
     try:
         model = spec.compile()
     except ValueError as exc:
@@ -169,11 +169,11 @@ def _range(pair) -> str:
     return "none" if pair is None else f"{pair[0]:g} to {pair[1]:g}"
 
 
-def readme(result: Conversion, package) -> str:
+def readme(result: Conversion, package: Package) -> str:
     """README.md of the model folder: the files, their sources, and every change made."""
     name, urdf = result.name, package.urdf.relative_to(package.root).as_posix()
-    robot = etree.parse(str(package.urdf), _parser()).getroot()
-    limits = read_joint_limits(package.urdf)
+    robot = package.robot
+    limits = read_joint_limits(package)
     links = [link.get("name") for link in robot.findall("link") if link.get("name") != "world"]
     joints = [(j.get("name"), j.get("type")) for j in robot.findall("joint")]
     gazebo = len(robot.findall("gazebo"))
@@ -272,5 +272,5 @@ def readme(result: Conversion, package) -> str:
 def _floor_height(model, data) -> float:
     """0, or the model's lowest point when it reaches below 0 by more than a micrometre
     (the exporter's numbers carry rounding noise of 1e-9 m that should not move the floor)."""
-    low = _lowest_collision_point(model, data)
+    low = lowest_collision_point(model, data)
     return round(low, 6) if low < -1e-6 else 0.0

@@ -9,8 +9,8 @@ collides with its own wheels, and there is nothing to stand on or look through.
 
 from __future__ import annotations
 
+import copy
 import os
-from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -18,106 +18,23 @@ from lxml import etree
 
 import mujoco
 
-
-class LoadError(Exception):
-    """A package that cannot be loaded; the message names the file (and line) and the fix."""
-
-    # What kind of problem it is, for tools that sort them (sw2sim check): "invalid" (the
-    # default), "missing" (no such file), "syntax" (not well-formed XML), "unsafe" (a path
-    # leading outside the package).
-    def __init__(self, file: Path | str, message: str, line: int | None = None, *,
-                 kind: str = "invalid"):
-        self.file, self.line, self.message, self.kind = str(file), line, message, kind
-        where = f"{self.file}:{line}" if line else self.file
-        super().__init__(f"{where}: {message}")
+from .package import LoadError, Package, as_package, find_package, resolve_mesh
 
 
-@dataclass(frozen=True)
-class Package:
-    """Where a package's files are."""
-
-    root: Path          # the folder holding package.xml (or the URDF's folder when there is none)
-    name: str           # the name package:// URLs must use
-    urdf: Path
+__all__ = ["LoadError", "Package", "as_package", "find_package", "load_package",
+           "lowest_collision_point", "resolve_mesh", "world_fixed"]
 
 
-def find_package(path: str | os.PathLike) -> Package:
-    """Locate the URDF and the package root from a package folder or a .urdf file."""
-    path = Path(path)
-    if not path.exists():
-        raise LoadError(path, "no such file or folder; give a package folder or a .urdf file",
-                        kind="missing")
-    if path.is_dir():
-        root = path
-        candidates = sorted((path / "urdf").glob("*.urdf")) or sorted(path.glob("*.urdf"))
-        if not candidates:
-            raise LoadError(path, "no URDF found; an exported package keeps it in urdf/<name>.urdf",
-                            kind="missing")
-        preferred = [c for c in candidates if c.stem == path.name]
-        urdf = (preferred or candidates)[0]
-    else:
-        urdf = path
-        root = path.parent.parent if path.parent.name == "urdf" else path.parent
-    name = root.name
-    manifest = root / "package.xml"
-    if manifest.is_symlink() and root.resolve() not in manifest.resolve().parents:
-        raise LoadError(manifest, "package.xml is a link to a file outside the package; "
-                        "copy the file into the package instead", kind="unsafe")
-    if manifest.is_file():
-        try:
-            tree = etree.parse(str(manifest), _parser())
-            found = tree.findtext("name")
-            if found:
-                name = found.strip()
-        except etree.XMLSyntaxError as exc:
-            raise LoadError(manifest, f"not well-formed XML: {exc.msg}", exc.lineno,
-                            kind="syntax") from None
-    return Package(root=root.resolve(), name=name, urdf=urdf.resolve())
-
-
-def world_fixed(path: str | os.PathLike) -> bool:
-    """Whether the URDF fixes its root link to a link named `world`.
+def world_fixed(source: str | os.PathLike | Package) -> bool:
+    """Whether the URDF fixes its root link to a link named `world` (`Package.world_fixed`).
 
     That is how a URDF says "bolted down" to Gazebo; without it the model falls free
     there, even though MuJoCo's URDF import welds a jointless root to the world.
     """
-    urdf = find_package(path).urdf
-    try:
-        robot = etree.parse(str(urdf), _parser()).getroot()
-    except etree.XMLSyntaxError as exc:
-        raise LoadError(urdf, f"not well-formed XML: {exc.msg}", exc.lineno) from None
-    return any(link.get("name") == "world" for link in robot.findall("link"))
+    return as_package(source).world_fixed
 
 
-def _parser() -> etree.XMLParser:
-    # Never expand entities or fetch anything named by the file.
-    return etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False, huge_tree=False)
-
-
-def resolve_mesh(package: Package, filename: str, urdf: Path, line: int | None) -> Path:
-    """Turn a URDF mesh filename into a file inside the package, or raise LoadError."""
-    if filename.startswith("package://"):
-        rest = filename[len("package://"):]
-        pkg, _, rel = rest.partition("/")
-        if pkg != package.name:
-            raise LoadError(urdf, f"mesh {filename!r} names package {pkg!r}, but this package is "
-                            f"{package.name!r} (package.xml); rename one so they match", line)
-        target = package.root / rel
-    elif filename.startswith("file://"):
-        target = Path(filename[len("file://"):])
-    else:
-        target = urdf.parent / filename
-    target = target.resolve()
-    if package.root not in target.parents:
-        raise LoadError(urdf, f"mesh {filename!r} points outside the package folder {package.root}; "
-                        "copy the mesh into meshes/ and use package://", line)
-    if not target.is_file():
-        raise LoadError(urdf, f"mesh {filename!r} not found (looked for {target}); "
-                        "export again with meshes, or fix the path", line)
-    return target
-
-
-def load_package(path: str | os.PathLike, *, fixed_base: bool = True,
+def load_package(source: str | os.PathLike | Package, *, fixed_base: bool = True,
                  scene: bool = True) -> mujoco.MjSpec:
     """A MuJoCo model specification of an exported package, ready to compile.
 
@@ -131,22 +48,19 @@ def load_package(path: str | os.PathLike, *, fixed_base: bool = True,
       on the floor;
     - `scene=False` leaves out the floor, the light, the camera and their textures, for a
       model file of the robot alone (a free base is still lifted to rest on z = 0).
+
+    `source` is a package folder, a .urdf file or a Package already read; a Package's
+    tree is left as it is (the mesh paths are rewritten in a copy).
     """
-    package = find_package(path)
+    package = as_package(source)
     urdf = package.urdf
-    try:
-        tree = etree.parse(str(urdf), _parser())
-    except etree.XMLSyntaxError as exc:
-        raise LoadError(urdf, f"not well-formed XML: {exc.msg}", exc.lineno) from None
-    robot = tree.getroot()
-    if robot.tag != "robot":
-        raise LoadError(urdf, f"the root element is <{robot.tag}>, a URDF starts with <robot>", robot.sourceline)
+    robot = copy.deepcopy(package.robot)
 
     for mesh in robot.iter("mesh"):
         filename = mesh.get("filename")
         if not filename:
             raise LoadError(urdf, "<mesh> without a filename", mesh.sourceline)
-        mesh.set("filename", str(resolve_mesh(package, filename, urdf, mesh.sourceline)))
+        mesh.set("filename", str(package.resolve_mesh(filename, mesh.sourceline)))
 
     for old in robot.findall("mujoco"):
         robot.remove(old)
@@ -205,7 +119,7 @@ def _add_scene(spec: mujoco.MjSpec, urdf: Path, root: mujoco.MjsBody, lift: bool
         raise LoadError(urdf, f"MuJoCo cannot compile this model: {exc}") from None
     data = mujoco.MjData(model)
     mujoco.mj_kinematics(model, data)
-    low = _lowest_collision_point(model, data)
+    low = lowest_collision_point(model, data)
     if lift:
         root.pos = np.asarray(root.pos) + [0, 0, max(0.0, -low) + 0.001]
         floor_z = 0.0
@@ -246,7 +160,7 @@ def _add_scene(spec: mujoco.MjSpec, urdf: Path, root: mujoco.MjsBody, lift: bool
     spec.stat.extent = extent
 
 
-def _lowest_collision_point(model: mujoco.MjModel, data: mujoco.MjData) -> float:
+def lowest_collision_point(model: mujoco.MjModel, data: mujoco.MjData) -> float:
     """The lowest z of any colliding geom at the rest pose (mesh vertices where available)."""
     low = np.inf
     for g in range(model.ngeom):

@@ -15,9 +15,9 @@ from pathlib import Path
 
 import mujoco
 import yaml
-from lxml import etree
 
-from .loader import LoadError, _parser, find_package
+from .package import LoadError, Package, as_package
+from .xmlsafe import source_line
 
 
 @dataclass(frozen=True)
@@ -47,28 +47,6 @@ class Transmission:
     reduction: float
 
 
-def _urdf_tree(path: str | os.PathLike) -> tuple[Path, etree._ElementTree]:
-    urdf = find_package(path).urdf
-    try:
-        return urdf, etree.parse(str(urdf), _parser())
-    except etree.XMLSyntaxError as exc:
-        raise LoadError(urdf, f"not well-formed XML: {exc.msg}", exc.lineno) from None
-
-
-def _attribute_line(file: Path, element, attribute: str) -> int | None:
-    """The line holding `attribute` of `element` (libxml2 reports where a start tag ends)."""
-    end = element.sourceline
-    if end is None:
-        return None
-    lines = file.read_text(encoding="utf-8", errors="replace").splitlines()
-    for number in range(min(end, len(lines)), 0, -1):
-        if f"{attribute}=" in lines[number - 1]:
-            return number
-        if f"<{element.tag}" in lines[number - 1]:
-            break
-    return end
-
-
 def _number(element, attribute: str, file: Path) -> float | None:
     text = element.get(attribute)
     if text is None:
@@ -77,14 +55,16 @@ def _number(element, attribute: str, file: Path) -> float | None:
         return float(text)
     except ValueError:
         raise LoadError(file, f"<{element.tag} {attribute}={text!r}> is not a number; write it in SI units "
-                        "without a unit, e.g. 1000", _attribute_line(file, element, attribute)) from None
+                        "without a unit, e.g. 1000", source_line(element, attribute)) from None
 
 
-def read_joint_limits(path: str | os.PathLike) -> dict[str, JointLimits]:
-    """The limits of every joint that has a `<limit>`, by joint name (package folder or .urdf)."""
-    urdf, tree = _urdf_tree(path)
+def read_joint_limits(source: str | os.PathLike | Package) -> dict[str, JointLimits]:
+    """The limits of every joint that has a `<limit>`, by joint name (package folder, .urdf
+    or Package)."""
+    package = as_package(source)
+    urdf = package.urdf
     limits = {}
-    for joint in tree.getroot().iter("joint"):
+    for joint in package.robot.iter("joint"):
         limit = joint.find("limit")
         if limit is None:
             continue
@@ -101,11 +81,12 @@ def read_joint_limits(path: str | os.PathLike) -> dict[str, JointLimits]:
     return limits
 
 
-def read_transmissions(path: str | os.PathLike) -> list[Transmission]:
-    """The simple transmissions declared in the URDF (package folder or .urdf)."""
-    urdf, tree = _urdf_tree(path)
+def read_transmissions(source: str | os.PathLike | Package) -> list[Transmission]:
+    """The simple transmissions declared in the URDF (package folder, .urdf or Package)."""
+    package = as_package(source)
+    urdf = package.urdf
     found = []
-    for t in tree.getroot().iter("transmission"):
+    for t in package.robot.iter("transmission"):
         joint, actuator = t.find("joint"), t.find("actuator")
         if joint is None or actuator is None:
             raise LoadError(urdf, f"transmission {t.get('name')!r} needs a <joint> and an <actuator>",
@@ -121,15 +102,16 @@ def read_transmissions(path: str | os.PathLike) -> list[Transmission]:
     return found
 
 
-def add_motors(spec: mujoco.MjSpec, path: str | os.PathLike) -> list[str]:
+def add_motors(spec: mujoco.MjSpec, source: str | os.PathLike | Package) -> list[str]:
     """Give the model one motor per transmission; return the motors' names, in `data.ctrl` order.
 
     A motor's control is the actuator's torque; `gear` is the transmission's mechanical
     reduction, and the control is limited to the joint's effort limit divided by it.
     """
-    limits = read_joint_limits(path)
+    package = as_package(source)
+    limits = read_joint_limits(package)
     names = []
-    for t in read_transmissions(path):
+    for t in read_transmissions(package):
         motor = spec.add_actuator(name=t.actuator, target=t.joint, trntype=mujoco.mjtTrn.mjTRN_JOINT)
         motor.set_to_motor()
         motor.gear[0] = t.reduction

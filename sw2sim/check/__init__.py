@@ -1,7 +1,7 @@
 """`sw2sim check`: what is wrong with an exported package, and how to fix it.
 
     from sw2sim.check import check
-    report = check("path/to/package")        # or a .urdf file
+    report = check("path/to/package")        # or a .urdf file, or a sw2sim Package
     print(report.format()); raise SystemExit(report.status)
 
 Each module below registers its rules and adds one check function to CHECKS; they run in
@@ -14,7 +14,7 @@ from __future__ import annotations
 from .context import Context, open_package
 from .findings import ERROR, FATAL, GROUPS, RULES, WARNING, Finding, Report, Rule
 
-__all__ = ["check", "Context", "Finding", "Report", "Rule", "RULES", "GROUPS",
+__all__ = ["check", "check_package", "open_package", "all_rules", "Context", "Finding", "Report", "Rule", "RULES", "GROUPS",
            "FATAL", "ERROR", "WARNING"]
 
 
@@ -25,16 +25,22 @@ def _checks():
             collisions.check]
 
 
-def check(path, *, stability: bool = True) -> Report:
-    """Check a package folder or a .urdf file; never raises on bad input."""
-    ctx = open_package(path)
+def check(source, *, stability: bool = True) -> Report:
+    """Check a package folder, a .urdf file or a Package; never raises on bad input."""
+    return check_package(source, stability=stability).report
+
+
+def check_package(source, *, stability: bool = True) -> Context:
+    """Check as `check` does, and return the Context: its `report`, and its `package` as
+    read (None when it could not be read), for a command that goes on to use it."""
+    ctx = open_package(source)
     if ctx.usable:
         for run in _checks():
             run(ctx)
         if stability and not any(f.severity in (FATAL, ERROR) for f in ctx.findings):
             from . import stability as stability_run
             ctx.report.stability = stability_run.check(ctx)
-    return ctx.report
+    return ctx
 
 
 def all_rules() -> dict[str, Rule]:

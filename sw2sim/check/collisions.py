@@ -19,9 +19,9 @@ import time
 import manifold3d
 import numpy as np
 
+from ..xmlsafe import source_line
 from .findings import WARNING, rule
-from .geometry import FAR, Piece, Tree, closed_solid, link_geometry, origin_matrix
-from .urdf import source_line
+from .geometry import FAR, Piece, Tree, closed_solid, link_geometry
 
 # Overlaps smaller than either of these are contact, not interpenetration.
 MIN_SHARE = 0.01        # of the smaller part's volume
@@ -128,7 +128,7 @@ def _pair(ctx, tree: Tree, a: str, b: str, pieces_a, pieces_b) -> None:
     child = a if tree.parent(a) == b else b  # the child of the two, else the later one
     relation = (f'parent and child, joint "{tree.joint_name(child)}"' if parent
                 else "not parent and child")
-    line = source_line(ctx, touching[child], None)
+    line = source_line(touching[child], None)
     smaller = min(_volume(pieces_a, solid=True), _volume(pieces_b, solid=True))
     if _reportable(solid, smaller):
         ctx.add("collision-overlap", f'the collision shapes of links "{a}" and "{b}" '

@@ -1,20 +1,21 @@
-"""Open a package for checking: find its URDF, read it safely, and collect findings.
+"""Open a package for checking, and collect findings.
 
-Nothing here raises on bad input. What makes the input unusable (a missing path, an
-unreadable file, XML that is not well-formed or declares entities, a root that is not
-<robot>) becomes a "fatal" finding, and `Context.usable` turns false.
+The package is read by `sw2sim.package.find_package` (safely, see `sw2sim.xmlsafe`), or
+given already read. Nothing here raises on bad input. What makes the input unusable (a
+missing path, an unreadable file, XML that is not well-formed or declares entities, a
+root that is not <robot>) becomes a "fatal" finding, and `Context.usable` turns false.
 """
 
 from __future__ import annotations
 
 import math
 import os
-from functools import cached_property, lru_cache
+from functools import lru_cache
 from pathlib import Path
 
 from lxml import etree
 
-from ..loader import LoadError, Package, find_package
+from ..package import LoadError, Package, find_package
 from .findings import FATAL, RULES, Finding, Report, rule
 
 rule("input-missing", FATAL, "input", "The path does not exist, or holds no URDF",
@@ -44,18 +45,26 @@ rule("not-urdf", FATAL, "input", "The XML is not a URDF",
            "or the file is a xacro that was never expanded.",
      fix="Give the exported .urdf; expand xacro files first with `xacro model.urdf.xacro > model.urdf`.")
 
-# Refuse files larger than this outright: an exported URDF is a few tens of kilobytes.
-MAX_URDF_BYTES = 50_000_000
+# How each kind of LoadError the package's reading raises is reported.
+_RULE_OF_KIND = {"syntax": "xml-syntax", "doctype": "xml-doctype", "not-urdf": "not-urdf",
+                 "unreadable": "input-unreadable"}
 
 
 class Context:
-    """One package under check: its files, its parsed URDF, and what was found so far."""
+    """One package under check: its files, its parsed URDF, and what was found so far.
 
-    def __init__(self, path: str | os.PathLike):
-        self.path = Path(path)
-        self.report = Report(path=str(path))
+    Made from a path, it holds no package until `open_package` reads it; made from a
+    Package, it checks that one (read elsewhere, e.g. by the command that converts it).
+    """
+
+    def __init__(self, source: str | os.PathLike | Package):
         self.package: Package | None = None
         self.robot: etree._Element | None = None
+        if isinstance(source, Package):
+            self.package, self.robot = source, source.robot
+            source = source.source if source.source is not None else source.root
+        self.path = Path(source)
+        self.report = Report(path=str(source))
         self._meshes: dict[Path, object] = {}
 
     # -- reporting -------------------------------------------------------------------
@@ -82,21 +91,15 @@ class Context:
         return finding
 
     # -- the URDF --------------------------------------------------------------------
-    @cached_property
+    @property
     def links(self) -> dict[str, etree._Element]:
         """Links by name (the first, where a name repeats)."""
-        found: dict[str, etree._Element] = {}
-        for link in self.robot.findall("link"):
-            found.setdefault(link.get("name", ""), link)
-        return found
+        return self.package.links
 
-    @cached_property
+    @property
     def joints(self) -> dict[str, etree._Element]:
         """Joints by name (the first, where a name repeats)."""
-        found: dict[str, etree._Element] = {}
-        for joint in self.robot.findall("joint"):
-            found.setdefault(joint.get("name", ""), joint)
-        return found
+        return self.package.joints
 
     def mesh_file(self, mesh: etree._Element) -> Path | None:
         """The file a <mesh filename=...> names, if it resolves to a file inside the package."""
@@ -104,8 +107,7 @@ class Context:
         if not filename or self.package is None:
             return None
         try:
-            from ..loader import resolve_mesh
-            return resolve_mesh(self.package, filename, self.package.urdf, mesh.sourceline)
+            return self.package.resolve_mesh(filename, mesh.sourceline)
         except (LoadError, OSError, ValueError, RuntimeError):  # RuntimeError: a symlink loop
             return None
 
@@ -164,68 +166,26 @@ def _real(folder: str) -> Path:
     return Path(folder).resolve()
 
 
-def open_package(path: str | os.PathLike) -> Context:
-    """A Context for the package at `path`; input problems become fatal findings."""
-    ctx = Context(path)
-    given = Path(path)
+def open_package(source: str | os.PathLike | Package) -> Context:
+    """A Context for the package at `source` (read here unless it is a Package already);
+    input problems become fatal findings."""
+    ctx = Context(source)
+    if ctx.package is not None:
+        return ctx
+    given = Path(source)
     if not given.exists():
         ctx.add("input-missing", f"{display(given)} does not exist", file=given,
                 fix="check the path; give the package folder or its .urdf file")
         return ctx
     try:
-        ctx.package = find_package(given)
+        ctx.package = find_package(source)
     except LoadError as exc:
         if exc.kind == "unsafe":    # "what is wrong; how to fix it"
             problem, _, fix = exc.message.partition("; ")
             ctx.add("input-unreadable", problem, file=exc.file, fix=fix or None)
         else:
-            rule_id = "xml-syntax" if exc.kind == "syntax" else "input-missing"
-            ctx.add(rule_id, exc.message, file=exc.file, line=exc.line)
+            ctx.add(_RULE_OF_KIND.get(exc.kind, "input-missing"), exc.detail, file=exc.file,
+                    line=exc.line, fix=exc.fix)
         return ctx
-    urdf = ctx.package.urdf
-    try:
-        if urdf.is_dir():
-            raise IsADirectoryError(urdf)
-        if urdf.exists() and not urdf.is_file():
-            # A named pipe or a device: reading it could wait for ever.
-            ctx.add("input-unreadable", "the URDF is not a regular file (a pipe or a device)",
-                    fix="give the exported .urdf file itself")
-            return ctx
-        size = urdf.stat().st_size
-        if size > MAX_URDF_BYTES:
-            ctx.add("input-unreadable", f"the URDF is {size / 1e6:.0f} MB; an exported URDF is "
-                    "a few tens of kilobytes", fix="give the exported .urdf, not another file")
-            return ctx
-        raw = urdf.read_bytes()
-    except OSError as exc:
-        ctx.add("input-unreadable", f"cannot read the URDF ({exc.strerror or type(exc).__name__})")
-        return ctx
-    if not raw.strip():
-        ctx.add("input-unreadable", "the URDF is empty", fix="export the package again")
-        return ctx
-    if b"<!DOCTYPE" in raw or b"<!ENTITY" in raw:
-        line = raw[:raw.find(b"<!")].count(b"\n") + 1
-        ctx.add("xml-doctype", "the file declares a DOCTYPE; entities are not expanded", line=line)
-        return ctx
-    try:
-        root = etree.fromstring(raw, _parser())
-    except etree.XMLSyntaxError as exc:
-        ctx.add("xml-syntax", exc.msg, line=exc.lineno or None)
-        return ctx
-    if root is not None and root.getroottree().docinfo.doctype:
-        # The byte test above cannot see a DOCTYPE in UTF-16 or UTF-32.
-        ctx.add("xml-doctype", "the file declares a DOCTYPE; entities are not expanded")
-        return ctx
-    if root is None or root.tag != "robot":
-        tag = "nothing" if root is None else f"<{root.tag}>"
-        ctx.add("not-urdf", f"the top element is {tag}; a URDF starts with <robot name=\"...\">",
-                line=None if root is None else root.sourceline)
-        return ctx
-    ctx.robot = root
+    ctx.robot = ctx.package.robot
     return ctx
-
-
-def _parser() -> etree.XMLParser:
-    # No entities, no DTD, no network, no huge trees: the file is data, never instructions.
-    return etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False,
-                           huge_tree=False, remove_comments=False)

@@ -11,16 +11,12 @@ no material has) is a warning.
 
 from __future__ import annotations
 
-import math
-from dataclasses import dataclass
-
 import numpy as np
 from scipy.spatial import ConvexHull, QhullError
 
-
+from ..xmlsafe import source_line
 from .findings import ERROR, WARNING, rule
-from .geometry import INERTIA_TERMS, Inertial, Tree, closed_solid, inertial_of, link_geometry, origin_matrix
-from .urdf import number, source_line
+from .geometry import Inertial, Tree, closed_solid, inertial_of, link_geometry
 
 # MuJoCo's smallest mass or principal moment of inertia (mjMINVAL).
 MJMINVAL = 1e-15
@@ -119,18 +115,18 @@ def check(ctx) -> None:
                 ctx.add("mass-not-positive", f'link "{name}" moves (joint '
                         f'"{tree.joint_name(name)}") but has no <inertial> and no collision '
                         "geometry for MuJoCo to compute a mass from",
-                        line=source_line(ctx, link))
+                        line=source_line(link))
             elif tree.moves(name):
                 ctx.add("inertial-missing", f'link "{name}" moves (joint '
                         f'"{tree.joint_name(name)}") but has no <inertial>' + _fallback(link),
-                        line=source_line(ctx, link))
+                        line=source_line(link))
             continue
         if inertial.missing:
             # Point at <inertia> when all that is missing are some of its terms.
             whole = {"<mass value>", "<inertia>"} & set(inertial.missing)
             at = inertial.element if whole else inertial.element.find("inertia")
             ctx.add("inertial-incomplete", f'link "{name}": the <inertial> has no '
-                    f"{', '.join(inertial.missing)}", line=source_line(ctx, at, None))
+                    f"{', '.join(inertial.missing)}", line=source_line(at, None))
         mass_ok = _mass(ctx, tree, name, inertial, alone=not mass)
         _tensor(ctx, name, inertial, alone=not inertia)
         if mass_ok and inertial.centre is not None:
@@ -165,7 +161,7 @@ def _mass(ctx, tree: Tree, name: str, inertial: Inertial, alone: bool) -> bool:
     mass = inertial.mass
     if mass is None:
         return False
-    line = source_line(ctx, inertial.element.find("mass"), "value")
+    line = source_line(inertial.element.find("mass"), "value")
     if mass < 0:
         ctx.add("mass-not-positive", f'link "{name}" has a negative mass, {mass:g} kg',
                 line=line)
@@ -188,7 +184,7 @@ def _tensor(ctx, name: str, inertial: Inertial, alone: bool) -> None:
     tensor = inertial.tensor
     if tensor is None:
         return
-    line = source_line(ctx, inertial.element.find("inertia"), None)
+    line = source_line(inertial.element.find("inertia"), None)
     if not tensor.any():
         if alone:
             ctx.add("inertia-not-positive-definite", f'link "{name}" moves but all six terms '
@@ -225,7 +221,7 @@ def _placement(ctx, link, inertial: Inertial) -> None:
         ctx.add("com-outside-geometry", f'link "{name}": the centre of mass ({x:.4g}, {y:.4g}, '
                 f"{z:.4g}) m lies {outside * 1000:.0f} mm outside its {kind} geometry, which is "
                 f"{size * 1000:.0f} mm across",
-                line=source_line(ctx, origin if origin is not None else inertial.element,
+                line=source_line(origin if origin is not None else inertial.element,
                                  "xyz" if origin is not None else None))
     solids = [closed_solid(p) for p in pieces]
     if None not in solids:
@@ -236,7 +232,7 @@ def _placement(ctx, link, inertial: Inertial) -> None:
             ctx.add("density-implausible", f'link "{name}": {inertial.mass:.4g} kg in '
                     f"{volume * 1e6:.4g} cm^3 of closed {kind} geometry makes {density:,.0f} "
                     f"kg/m^3 (aluminium: 2,700, steel: 7,850)",
-                    line=source_line(ctx, inertial.element.find("mass"), "value"))
+                    line=source_line(inertial.element.find("mass"), "value"))
 
 
 def _distance_outside(points: np.ndarray, centre: np.ndarray) -> float:

@@ -11,8 +11,9 @@ from __future__ import annotations
 
 import math
 
+from ..xmlsafe import source_line
 from .findings import ERROR, WARNING, rule
-from .urdf import number, source_line, vector
+from .urdf import number, vector
 
 # Joint types whose <axis> is used, whose <limit> is required, and that a motor can drive.
 AXIS_TYPES = ("revolute", "continuous", "prismatic", "planar")
@@ -112,7 +113,7 @@ def _axis(ctx, joint, name: str) -> None:
     if xyz is None:
         return
     length = math.sqrt(sum(v * v for v in xyz))
-    line = source_line(ctx, axis, "xyz")
+    line = source_line(axis, "xyz")
     written = " ".join(_g(v) for v in xyz)
     if length < 1e-9:
         ctx.add("axis-zero", f'joint "{name}" has axis xyz="{written}"', line=line)
@@ -128,12 +129,12 @@ def _limit(ctx, joint, name: str, kind: str | None) -> None:
     if limit is None:
         if kind in LIMITED_TYPES:
             ctx.add("limit-missing", f'{kind} joint "{name}" has no <limit>',
-                    line=source_line(ctx, joint))
+                    line=source_line(joint))
         return
     absent = [a for a in ("effort", "velocity") if limit.get(a) is None]
     if absent:
         ctx.add("limit-incomplete", f'the <limit> of joint "{name}" has no '
-                f"{' and no '.join(absent)}", line=source_line(ctx, limit, None),
+                f"{' and no '.join(absent)}", line=source_line(limit, None),
                 fix=f"add {' and '.join(f'{a}=...' for a in absent)} (positive numbers) to "
                     f'the <limit> of "{name}"')
     if kind not in DRIVEN_TYPES:
@@ -148,22 +149,22 @@ def _limit(ctx, joint, name: str, kind: str | None) -> None:
                f'for "{name}" in {DIALOG}; lower and upper may stay 0'
                if kind == "continuous" else None)
         ctx.add("limit-exporter-default", f'{kind} joint "{name}" has lower = upper = effort = '
-                "velocity = 0", line=source_line(ctx, limit, None), fix=fix)
+                "velocity = 0", line=source_line(limit, None), fix=fix)
         return
     if kind in LIMITED_TYPES and lower is not None and upper is not None and lower >= upper:
         ctx.add("limit-range-empty", f'{kind} joint "{name}" has lower {_g(lower)} and upper '
-                f"{_g(upper)}", line=source_line(ctx, limit, "lower"),
+                f"{_g(upper)}", line=source_line(limit, "lower"),
                 fix=("swap lower and upper" if lower > upper else
                      "make upper greater than lower, or make the joint fixed if it must not move"))
     if kind == "continuous" and (lower or upper):
         ctx.add("limit-on-continuous", f'continuous joint "{name}" has lower {_g(lower)} and '
-                f"upper {_g(upper)}, which are ignored", line=source_line(ctx, limit, "lower"))
+                f"upper {_g(upper)}, which are ignored", line=source_line(limit, "lower"))
     if effort is not None and effort <= 0:
         ctx.add("effort-not-positive", f'joint "{name}" has effort {_g(effort)}',
-                line=source_line(ctx, limit, "effort"))
+                line=source_line(limit, "effort"))
     if velocity is not None and velocity <= 0:
         ctx.add("velocity-not-positive", f'joint "{name}" has velocity {_g(velocity)}',
-                line=source_line(ctx, limit, "velocity"))
+                line=source_line(limit, "velocity"))
 
 
 def _safety(ctx, joint, name: str) -> None:
@@ -174,7 +175,7 @@ def _safety(ctx, joint, name: str) -> None:
             names = " and ".join(misspelt)
             ctx.add("safety-limits-misspelt", f'the <safety_controller> of joint "{name}" has '
                     f"{names}, which URDF does not know",
-                    line=source_line(ctx, safety, misspelt[0]),
+                    line=source_line(safety, misspelt[0]),
                     fix=f"rename {names} to {' and '.join(f'{a}_limit' for a in misspelt)}")
 
 

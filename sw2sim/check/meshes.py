@@ -6,26 +6,22 @@ symbolic links and `..` before anything is opened, and a path that ends up outsi
 reported. Problems of a file's content are reported once per file, at the first <mesh> that
 names it, however many links or elements use it.
 
-The helpers at the end give each link's visual or collision geometry as triangle meshes in
-the link's frame; the inertia and collision checks build on them.
+Each link's geometry as triangle meshes, which the inertia and collision checks measure,
+is `geometry.py`'s.
 """
 
 from __future__ import annotations
 
 import os
-import weakref
-from dataclasses import dataclass
 from pathlib import Path
 
-import manifold3d
 import numpy as np
-import trimesh
-from trimesh.transformations import euler_matrix
 
+from ..xmlsafe import source_line
 from .context import display
 from .findings import ERROR, WARNING, rule
-from .geometry import FAR, STL_FACE_LIMIT, millimetre_suspect
-from .urdf import number, owner, source_line, vector
+from .geometry import STL_FACE_LIMIT, millimetre_suspect
+from .urdf import owner, vector
 
 # MuJoCo 4 decodes binary STL, OBJ and its own MSH; anything else stops the compile with
 # "no decoder found for mesh file".
@@ -129,7 +125,7 @@ def check(ctx) -> None:
         filename = (mesh.get("filename") or "").strip()
         if not filename:
             ctx.add("mesh-no-filename", f"{_role(mesh)}: the <mesh> has no filename",
-                    line=source_line(ctx, mesh, "filename"))
+                    line=source_line(mesh, "filename"))
             continue
         path = ctx.mesh_file(mesh)
         if path is None:
@@ -165,7 +161,7 @@ def _role(mesh) -> str:
 
 def _also(ctx, meshes) -> str:
     """' (also named at lines 12, 40)' when more than one <mesh> names the same file."""
-    lines = [str(source_line(ctx, m, "filename")) for m in meshes[1:]]
+    lines = [str(source_line(m, "filename")) for m in meshes[1:]]
     return f" (also named at line{'s' if len(lines) > 1 else ''} {', '.join(lines)})" \
         if lines else ""
 
@@ -176,7 +172,7 @@ def _unresolved(ctx, filename: str, meshes) -> None:
     """Say why a mesh path does not lead to a file in the package (once per path)."""
     package = ctx.package
     first = meshes[0]
-    line = source_line(ctx, first, "filename")
+    line = source_line(first, "filename")
     named = f'{_role(first)}: mesh "{filename}"'
     if filename.startswith("package://"):
         name, _, rest = filename[len("package://"):].partition("/")
@@ -228,7 +224,7 @@ def _inside(path: Path, root: Path) -> bool:
 def _file(ctx, path: Path, meshes) -> bool:
     """Check one mesh file (named by `meshes`); True when its geometry is usable."""
     first = meshes[0]
-    line = source_line(ctx, first, "filename")
+    line = source_line(first, "filename")
     named = f'{_role(first)}: {display(path)}'
     also = _also(ctx, meshes)
     suffix = path.suffix.lower()
@@ -357,7 +353,7 @@ def _units(ctx, link, readable: set) -> None:
         why = None if mesh is None else millimetre_suspect(link, mesh)
         if why:
             ctx.add("mesh-units", f"{_role(mesh_el)}: {display(path)} looks like millimetres: "
-                    f"{why}", line=source_line(ctx, mesh_el, "filename"))
+                    f"{why}", line=source_line(mesh_el, "filename"))
 
 
 def _heavy_collision(ctx, link, readable: set) -> None:
@@ -374,7 +370,7 @@ def _heavy_collision(ctx, link, readable: set) -> None:
         if path.suffix.lower() != ".stl" or len(mesh.faces) <= STL_FACE_LIMIT:  # else an error
             ctx.add("mesh-heavy-collision", f"{_role(mesh_el)}: the collision geometry is the "
                     f"visual mesh {display(path)}, {len(mesh.faces):,} triangles (more than "
-                    f"{HEAVY_FACES:,})", line=source_line(ctx, mesh_el, "filename"))
+                    f"{HEAVY_FACES:,})", line=source_line(mesh_el, "filename"))
 
 
 # -- geometry for the other checks -------------------------------------------------------

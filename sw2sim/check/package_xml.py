@@ -2,20 +2,19 @@
 
 MuJoCo only needs the meshes; ROS needs the package to be a valid catkin package whose
 name matches the `package://<name>/` prefix of every mesh path. The name that counts is
-the one `sw2sim.loader.find_package` reads (package.xml's <name>, else the folder's name),
-so this check and the loader agree. A package.xml that is not well-formed XML never gets
-here: opening the package reports it, with its line, as `xml-syntax`.
+the one `sw2sim.package.find_package` reads (package.xml's <name>, else the folder's name),
+so this check and the loader agree; package.xml itself is read there, once. A package.xml
+that is not well-formed XML never gets here: opening the package reports it, with its
+line, as `xml-syntax`.
 """
 
 from __future__ import annotations
 
 import re
 
-from lxml import etree
-
-from ..loader import _parser
+from ..xmlsafe import source_line
 from .findings import ERROR, WARNING, rule
-from .urdf import owner, source_line
+from .urdf import owner
 
 # catkin's rules for package names (catkin_pkg, REP 144): a name outside LENIENT_NAME is
 # refused; one outside VALID_NAME is accepted with a warning, for old packages' sake.
@@ -92,20 +91,16 @@ rule("package-folder-name", WARNING, "package", "The folder's name differs from 
 def check(ctx) -> None:
     """Add a finding to ctx for every problem of this group."""
     package = ctx.package
-    manifest = package.root / "package.xml"
-    if manifest.is_file():
-        _manifest(ctx, manifest)
+    manifest = package.manifest_file
+    if package.manifest is not None:
+        _manifest(ctx, manifest, package.manifest)
     else:
         ctx.add("package-xml-missing", f"no package.xml in {package.root.name}/; the package "
                 f'name is taken from the folder, "{package.name}"', file=manifest)
-    _mesh_package_names(ctx, has_manifest=manifest.is_file())
+    _mesh_package_names(ctx, has_manifest=package.manifest is not None)
 
 
-def _manifest(ctx, manifest) -> None:
-    try:
-        root = etree.parse(str(manifest), _parser()).getroot()
-    except (OSError, etree.XMLSyntaxError):
-        return  # opening the package reported it already
+def _manifest(ctx, manifest, root) -> None:
     if root is None or root.tag != "package":
         tag = "nothing" if root is None else f"<{root.tag}>"
         ctx.add("package-xml-invalid", f"the top element of package.xml is {tag}, not "
@@ -168,7 +163,7 @@ def _mesh_package_names(ctx, has_manifest: bool) -> None:
                f'replace "package://{name}/" by "package://{expected}/" in the URDF')
         ctx.add("package-name-mismatch", f'{count} name package "{name}" (first in '
                 f'{owner(meshes[0])}), but this package is "{expected}" according to '
-                f"{source}", line=source_line(ctx, meshes[0], "filename"), fix=fix)
+                f"{source}", line=source_line(meshes[0], "filename"), fix=fix)
 
 
 def _suggest(name: str) -> str:

@@ -20,7 +20,8 @@ import mujoco
 import numpy as np
 
 from ..actuators import joint_inertia
-from ..loader import LoadError, load_package, world_fixed
+from ..loader import load_package
+from ..package import LoadError
 from ..ros_control import add_motors
 from .findings import ERROR, WARNING, rule
 
@@ -92,10 +93,10 @@ def check(ctx) -> dict:
     started = time.perf_counter()
     with mujoco_warnings() as said:
         try:
-            fixed = world_fixed(ctx.path)
-            spec = load_package(ctx.path, fixed_base=fixed)
+            fixed = ctx.package.world_fixed
+            spec = load_package(ctx.package, fixed_base=fixed)
             try:
-                motors = add_motors(spec, ctx.path)
+                motors = add_motors(spec, ctx.package)
             except (LoadError, ValueError):
                 motors = []   # the joint checks report unreadable transmissions
             model = spec.compile()

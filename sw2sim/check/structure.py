@@ -11,14 +11,12 @@ the way the URDF parsers do (or give None, reported once by `number-invalid`), a
 
 from __future__ import annotations
 
-import math
-import re
-import weakref
 from collections import defaultdict
 from difflib import get_close_matches
 
+from ..xmlsafe import source_line
 from .findings import ERROR, rule
-from .urdf import number, owner, source_line, vector
+from .urdf import number, owner
 
 JOINT_TYPES = ("revolute", "continuous", "prismatic", "fixed", "floating", "planar")
 
@@ -123,7 +121,7 @@ def check(ctx) -> None:
     _names(ctx, joints, "joint")
     if not links:
         ctx.add("urdf-no-links", f'robot "{ctx.robot.get("name", "")}" has no <link> elements',
-                line=source_line(ctx, ctx.robot))
+                line=source_line(ctx.robot))
     _joint_types(ctx, joints)
     edges = _joint_ends(ctx, joints, {link.get("name") for link in links})
     _tree(ctx, links, edges)
@@ -135,12 +133,12 @@ def _names(ctx, elements, kind: str) -> None:
     for element in elements:
         name = element.get("name")
         if name is None or not name.strip():
-            ctx.add("name-missing", f"a <{kind}> has no name", line=source_line(ctx, element),
+            ctx.add("name-missing", f"a <{kind}> has no name", line=source_line(element),
                     fix=f"add name=\"...\" to this <{kind}>, unique among the {kind}s")
         elif name in first:
-            earlier = source_line(ctx, first[name])
+            earlier = source_line(first[name])
             ctx.add("name-duplicate", f'{kind} "{name}" is defined again (first at line '
-                    f"{earlier})", line=source_line(ctx, element),
+                    f"{earlier})", line=source_line(element),
                     fix=f'rename one of the two {kind}s called "{name}"')
         else:
             first[name] = element
@@ -158,7 +156,7 @@ def _joint_types(ctx, joints) -> None:
             message = f'joint "{name}" has type "{_short(kind)}", which URDF does not know'
         guess = get_close_matches((kind or "").lower(), JOINT_TYPES, n=1)
         fix = (f'write type="{guess[0]}"' if guess else None)
-        ctx.add("joint-type-unknown", message, line=source_line(ctx, joint, "type"), fix=fix)
+        ctx.add("joint-type-unknown", message, line=source_line(joint, "type"), fix=fix)
 
 
 def _joint_ends(ctx, joints, link_names: set) -> list[tuple[str, str, object]]:
@@ -181,7 +179,7 @@ def _joint_end(ctx, joint, end: str, link_names: set) -> str | None:
     link = None if element is None else element.get("link")
     if link is None or not link.strip():
         ctx.add(rule_id, f'joint "{name}" has no <{end} link="..."/>',
-                line=source_line(ctx, joint),
+                line=source_line(joint),
                 fix=f'add <{end} link="..."/> naming the {end} link of "{name}"')
         return None
     if link not in link_names:
@@ -189,7 +187,7 @@ def _joint_end(ctx, joint, end: str, link_names: set) -> str | None:
         fix = (f'did you mean "{guess}"? Write <{end} link="{guess}"/>' if guess
                else f"name an existing link, or add a <link name=\"{_short(link)}\">")
         ctx.add(rule_id, f'joint "{name}" names {end} link "{_short(link)}", which does not '
-                "exist", line=source_line(ctx, element, "link"), fix=fix)
+                "exist", line=source_line(element, "link"), fix=fix)
         return None
     return link
 
@@ -201,7 +199,7 @@ def _tree(ctx, links, edges) -> None:
             first = parent_joint[child].get("name", "")
             ctx.add("link-two-parents", f'link "{child}" is the child of joint "{first}" and '
                     f'of joint "{joint.get("name", "")}"',
-                    line=source_line(ctx, joint.find("child"), "link"),
+                    line=source_line(joint.find("child"), "link"),
                     fix=f'keep one parent joint for "{child}"; close the loop in MuJoCo with '
                         "an equality constraint")
         else:
@@ -226,7 +224,7 @@ def _tree(ctx, links, edges) -> None:
     if len(roots) > 1:
         listed = _listed([f'"{r.get("name")}"' for r in roots])
         ctx.add("roots-several", f"{len(roots)} links have no parent joint: {listed}",
-                line=source_line(ctx, roots[1]),
+                line=source_line(roots[1]),
                 fix=f'join each of them to the tree with a joint; "{roots[0].get("name")}" '
                     "can stay the root")
 
@@ -275,7 +273,7 @@ def _cycles(ctx, edges) -> None:
         first = min(joints, key=lambda j: j.sourceline or 0)
         path = _listed([f'"{parent}"' for parent, _, _ in cycle], " -> ")
         ctx.add("kinematic-cycle", f"the joints {_listed(_quoted(joints))} form a cycle: "
-                f'{path} -> "{cycle[0][0]}"', line=source_line(ctx, first),
+                f'{path} -> "{cycle[0][0]}"', line=source_line(first),
                 fix="remove one joint of the cycle, or swap parent and child where they "
                     "were reversed")
 
@@ -336,7 +334,7 @@ def _numbers(ctx) -> None:
                 if problem:
                     ctx.add("number-invalid", f'{owner(element)}: <{element.tag} {attribute}='
                             f'"{_short(text)}">: {problem}',
-                            line=source_line(ctx, element, attribute),
+                            line=source_line(element, attribute),
                             fix=_number_fix(attribute, size))
 
 

@@ -1,0 +1,200 @@
+"""A package in the SolidWorks-to-URDF exporter's layout, found and read once.
+
+`find_package` locates the URDF and the package root from a package folder or a .urdf
+file, reads package.xml and the URDF safely (`sw2sim.xmlsafe`), and returns a `Package`:
+what every command needs to know about the package, read from disk once. The functions
+that take a package (`load_package`, `world_fixed`, the `ros_control` readers,
+`add_actuators`, `convert`, `check`) accept a path or a Package; `as_package` is how.
+
+Nothing here changes a Package's tree; code that needs to change it works on a copy.
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass
+from functools import cached_property
+from pathlib import Path
+
+from lxml import etree
+
+from . import xmlsafe
+
+
+class LoadError(Exception):
+    """A package that cannot be loaded; the message names the file (and line) and the fix."""
+
+    # What kind of problem it is, for tools that sort them (sw2sim check): "invalid" (the
+    # default), "missing" (no such file), "unreadable" (a pipe, a folder, too large, empty),
+    # "syntax" (not well-formed XML), "doctype" (a URDF declaring a DOCTYPE), "not-urdf"
+    # (another kind of XML), "unsafe" (a path leading outside the package). `fix` is what
+    # to do, when the message does not say it already; `detail` is the problem in the words
+    # `sw2sim check` reports it with (the message, unless it is given).
+    def __init__(self, file: Path | str, message: str, line: int | None = None, *,
+                 kind: str = "invalid", fix: str | None = None, detail: str | None = None):
+        self.file, self.line, self.message, self.kind = str(file), line, message, kind
+        self.fix, self.detail = fix, message if detail is None else detail
+        where = f"{self.file}:{line}" if line else self.file
+        super().__init__(f"{where}: {message}" + (f"; {fix}" if fix else ""))
+
+
+@dataclass(frozen=True, eq=False)
+class Package:
+    """A package as read from disk: where its files are, and its parsed URDF.
+
+    `robot` and `manifest` are shared by everything that reads the package: never change
+    them (copy.deepcopy the element first, as `load_package` does).
+    """
+
+    root: Path          # the folder holding package.xml (or the URDF's folder when there is none)
+    name: str           # the name package:// URLs must use
+    urdf: Path
+    robot: etree._Element                   # the URDF's <robot> element
+    manifest: etree._Element | None = None  # package.xml's top element, when there is one
+    source: str | os.PathLike | None = None  # the path it was read from, as given
+
+    @property
+    def manifest_file(self) -> Path:
+        return self.root / "package.xml"
+
+    @cached_property
+    def links(self) -> dict[str, etree._Element]:
+        """Links by name (the first, where a name repeats)."""
+        found: dict[str, etree._Element] = {}
+        for link in self.robot.findall("link"):
+            found.setdefault(link.get("name", ""), link)
+        return found
+
+    @cached_property
+    def joints(self) -> dict[str, etree._Element]:
+        """Joints by name (the first, where a name repeats)."""
+        found: dict[str, etree._Element] = {}
+        for joint in self.robot.findall("joint"):
+            found.setdefault(joint.get("name", ""), joint)
+        return found
+
+    @property
+    def world_fixed(self) -> bool:
+        """Whether the URDF fixes its root link to a link named `world`.
+
+        That is how a URDF says "bolted down" to Gazebo; without it the model falls free
+        there, even though MuJoCo's URDF import welds a jointless root to the world.
+        """
+        return any(link.get("name") == "world" for link in self.robot.findall("link"))
+
+    def resolve_mesh(self, filename: str, line: int | None = None) -> Path:
+        """The file a URDF mesh filename names, inside the package; else LoadError."""
+        return resolve_mesh(self, filename, self.urdf, line)
+
+
+def as_package(source: str | os.PathLike | Package) -> Package:
+    """`source` itself when it is a Package already, else the package it locates, read."""
+    return source if isinstance(source, Package) else find_package(source)
+
+
+def find_package(path: str | os.PathLike) -> Package:
+    """Locate the URDF and the package root from a package folder or a .urdf file, and
+    read both package.xml and the URDF; raise LoadError when they cannot be used."""
+    given = path
+    path = Path(path)
+    if not path.exists():
+        raise LoadError(path, "no such file or folder; give a package folder or a .urdf file",
+                        kind="missing")
+    if path.is_dir():
+        root = path
+        candidates = sorted((path / "urdf").glob("*.urdf")) or sorted(path.glob("*.urdf"))
+        if not candidates:
+            raise LoadError(path, "no URDF found; an exported package keeps it in urdf/<name>.urdf",
+                            kind="missing")
+        preferred = [c for c in candidates if c.stem == path.name]
+        urdf = (preferred or candidates)[0]
+    else:
+        urdf = path
+        root = path.parent.parent if path.parent.name == "urdf" else path.parent
+    name = root.name
+    manifest_file = root / "package.xml"
+    if manifest_file.is_symlink() and root.resolve() not in manifest_file.resolve().parents:
+        raise LoadError(manifest_file, "package.xml is a link to a file outside the package; "
+                        "copy the file into the package instead", kind="unsafe")
+    manifest = None
+    if manifest_file.is_file():
+        manifest = _read_manifest(manifest_file)
+        found = manifest.findtext("name") if manifest is not None else None
+        if found:
+            name = found.strip()
+    urdf = urdf.resolve()
+    return Package(root=root.resolve(), name=name, urdf=urdf, robot=_read_urdf(urdf),
+                   manifest=manifest, source=given)
+
+
+def _read_manifest(file: Path) -> etree._Element | None:
+    # A DOCTYPE is parsed (never expanded) here: the package checks report what it leaves.
+    try:
+        return xmlsafe.parse_file(file, doctype=True)
+    except etree.XMLSyntaxError as exc:
+        raise LoadError(file, f"not well-formed XML: {exc.msg}", exc.lineno,
+                        kind="syntax") from None
+    except xmlsafe.TooLarge as exc:
+        raise LoadError(file, f"package.xml is {exc.size / 1e6:.0f} MB; a package manifest is "
+                        "a few kilobytes", kind="unreadable",
+                        fix="restore the exported package.xml") from None
+    except OSError as exc:
+        raise LoadError(file, f"cannot read package.xml ({_why(exc)})", kind="unreadable") from None
+
+
+def _read_urdf(urdf: Path) -> etree._Element:
+    try:
+        raw = xmlsafe.read_bytes(urdf)
+    except xmlsafe.NotRegularFile:
+        raise LoadError(urdf, "the URDF is not a regular file (a pipe or a device)",
+                        kind="unreadable", fix="give the exported .urdf file itself") from None
+    except xmlsafe.TooLarge as exc:
+        raise LoadError(urdf, f"the URDF is {exc.size / 1e6:.0f} MB; an exported URDF is a few "
+                        "tens of kilobytes", kind="unreadable",
+                        fix="give the exported .urdf, not another file") from None
+    except OSError as exc:
+        raise LoadError(urdf, f"cannot read the URDF ({_why(exc)})", kind="unreadable") from None
+    if not raw.strip():
+        raise LoadError(urdf, "the URDF is empty", kind="unreadable",
+                        fix="export the package again")
+    try:
+        robot = xmlsafe.parse_bytes(raw, url=urdf)
+    except xmlsafe.DoctypeDeclared as exc:
+        raise LoadError(urdf, "the file declares a DOCTYPE; entities are not expanded", exc.line,
+                        kind="doctype") from None
+    except etree.XMLSyntaxError as exc:
+        raise LoadError(urdf, f"not well-formed XML: {exc.msg}", exc.lineno or None,
+                        kind="syntax", detail=exc.msg) from None
+    if robot is None or robot.tag != "robot":
+        tag = "nothing" if robot is None else f"<{robot.tag}>"
+        raise LoadError(urdf, f"the root element is {tag}, a URDF starts with <robot>",
+                        None if robot is None else robot.sourceline, kind="not-urdf",
+                        detail=f"the top element is {tag}; a URDF starts with <robot name=\"...\">")
+    return robot
+
+
+def _why(exc: OSError) -> str:
+    return exc.strerror or type(exc).__name__
+
+
+def resolve_mesh(package: Package, filename: str, urdf: Path, line: int | None) -> Path:
+    """Turn a URDF mesh filename into a file inside the package, or raise LoadError."""
+    if filename.startswith("package://"):
+        rest = filename[len("package://"):]
+        pkg, _, rel = rest.partition("/")
+        if pkg != package.name:
+            raise LoadError(urdf, f"mesh {filename!r} names package {pkg!r}, but this package is "
+                            f"{package.name!r} (package.xml); rename one so they match", line)
+        target = package.root / rel
+    elif filename.startswith("file://"):
+        target = Path(filename[len("file://"):])
+    else:
+        target = urdf.parent / filename
+    target = target.resolve()
+    if package.root not in target.parents:
+        raise LoadError(urdf, f"mesh {filename!r} points outside the package folder {package.root}; "
+                        "copy the mesh into meshes/ and use package://", line)
+    if not target.is_file():
+        raise LoadError(urdf, f"mesh {filename!r} not found (looked for {target}); "
+                        "export again with meshes, or fix the path", line)
+    return target
