@@ -3,9 +3,10 @@
 A package's files are data, never instructions: entities are not expanded, no DTD is
 loaded, nothing is fetched from the network, trees may not be huge, and a file that is
 not a regular file (a named pipe, a device) or is larger than MAX_BYTES is refused before
-it is opened. A URDF may not declare a DOCTYPE at all (`parse_bytes(..., doctype=True)`
-lets package.xml keep one, unexpanded). Every module of sw2sim parses through here; a
-test of the tool's structure makes sure no other module calls lxml's parsers.
+it is opened. A document may not declare a DOCTYPE unless the caller allows one
+(`doctype=True`: package.xml is read so, its DOCTYPE kept and never expanded). Every
+module of sw2sim parses through here; a test of the tool's structure makes sure no other
+module calls lxml's parsers.
 """
 
 from __future__ import annotations
@@ -69,8 +70,8 @@ def parse_bytes(raw: bytes, *, url: str | os.PathLike | None = None,
     """The root element of an XML document held in `raw` (from the file `url`, if any).
 
     Raises DoctypeDeclared for a document with a DOCTYPE unless `doctype` is true, and
-    lxml's XMLSyntaxError for one that is not well-formed. (None only for a document
-    without an element, which libxml2 reports as an error first.)
+    lxml's XMLSyntaxError for one that is not well-formed. (lxml gives None rather than
+    an element only for a document libxml2 would already call empty; callers check.)
     """
     if not doctype and (b"<!DOCTYPE" in raw or b"<!ENTITY" in raw):
         raise DoctypeDeclared(raw[:raw.find(b"<!")].count(b"\n") + 1)
@@ -84,7 +85,7 @@ def parse_bytes(raw: bytes, *, url: str | os.PathLike | None = None,
 
 
 def parse_file(path: str | os.PathLike, *, max_bytes: int = MAX_BYTES,
-               doctype: bool = False) -> etree._Element:
+               doctype: bool = False) -> etree._Element | None:
     """The root element of the XML file at `path`: `read_bytes`, then `parse_bytes`."""
     return parse_bytes(read_bytes(path, max_bytes), url=path, doctype=doctype)
 

@@ -4,9 +4,12 @@
     report = check("path/to/package")        # or a .urdf file, or a sw2sim Package
     print(report.format()); raise SystemExit(report.status)
 
-Each module below registers its rules and adds one check function to CHECKS; they run in
-order on one shared Context. The stability run comes last, and only when nothing so far
-stops MuJoCo from compiling the model.
+Each rule module (structure, package_xml, meshes, inertia, joints, collisions, stability)
+registers its rules and has one check function; they run in order on one shared Context.
+The stability run comes last, and only when nothing so far stops MuJoCo from compiling
+the model. Rule modules build on findings, context, urdf (reading values) and geometry
+(shapes, masses, the link tree) and on the tool's modules outside check/, never on each
+other (tests/tool/test_structure_of_the_tool.py).
 """
 
 from __future__ import annotations
@@ -14,8 +17,8 @@ from __future__ import annotations
 from .context import Context, open_package
 from .findings import ERROR, FATAL, GROUPS, RULES, WARNING, Finding, Report, Rule
 
-__all__ = ["check", "check_package", "open_package", "all_rules", "Context", "Finding", "Report", "Rule", "RULES", "GROUPS",
-           "FATAL", "ERROR", "WARNING"]
+__all__ = ["check", "check_package", "open_package", "all_rules", "Context", "Finding",
+           "Report", "Rule", "RULES", "GROUPS", "FATAL", "ERROR", "WARNING"]
 
 
 def _checks():

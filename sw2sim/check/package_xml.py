@@ -101,10 +101,10 @@ def check(ctx) -> None:
 
 
 def _manifest(ctx, manifest, root) -> None:
-    if root is None or root.tag != "package":
-        tag = "nothing" if root is None else f"<{root.tag}>"
-        ctx.add("package-xml-invalid", f"the top element of package.xml is {tag}, not "
-                "<package>", file=manifest, line=None if root is None else root.sourceline)
+    """The checks of package.xml, whose top element (as the package read it) is `root`."""
+    if root.tag != "package":
+        ctx.add("package-xml-invalid", f"the top element of package.xml is <{root.tag}>, not "
+                "<package>", file=manifest, line=root.sourceline)
         return
     _format(ctx, manifest, root)
     name_element = root.find("name")
