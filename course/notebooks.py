@@ -18,30 +18,26 @@ other change runs the notebook again.
 
 from __future__ import annotations
 
-import argparse
 import ast
-import hashlib
-import os
 import re
 import sys
 import tempfile
 import time
-from concurrent.futures import ProcessPoolExecutor, as_completed
 from functools import cache
-from importlib.metadata import version
-from multiprocessing import get_context
 from pathlib import Path
 
 import nbformat
 import yaml
-from markdown_it import MarkdownIt
 from nbformat import NotebookNode
 from nbformat.v4 import new_code_cell, new_markdown_cell, new_notebook
 
-from .media import RENDERERS, _imported_closure, _module_file
+from . import freshness, media
+from .freshness import Fingerprint
+from .media import RENDERERS
 from .practices import ROOT
 from .snippets import Block, Page, find_pages, parse_page
-from .snippets.parse import split_front_matter
+from .snippets.parse import (INCLUDE_CODE, include_code_arguments, split_front_matter,
+                             without_raw_tags)
 
 FOLDER = ROOT / "notebooks"
 KERNEL = {"name": "python3", "display_name": "Python 3", "language": "python"}
@@ -78,18 +74,10 @@ del _go_to_repository_root'''
 
 # Liquid other than {% raw %} and {% include_code %} is the site's own templating: a
 # notebook cannot evaluate it, so such a region of a page becomes a note.
-_RAW_TAG = re.compile(r"\{%-?\s*(?:end)?raw\s*-?%\}")
-_INCLUDE_CODE = re.compile(r"\{%-?\s*include_code\s+(?P<args>.*?)\s*-?%\}")
-_INCLUDE_ARGS = re.compile(
-    r"""^(?:"(?P<dq>[^"]+)"|'(?P<sq>[^']+)'|(?P<bare>\S+))(?:\s+indent=(?P<n>\d+))?$""")
-_RAW_OPEN = re.compile(r"\{%-?\s*raw\b")
-_RAW_CLOSE = re.compile(r"\{%-?\s*endraw\b")
 _LIQUID = re.compile(r"\{%.*?%\}|\{\{.*?\}\}")
 _LIQUID_OPEN = re.compile(r"\{%-?\s*(?:for|if|unless|case|capture)\b")
 _LIQUID_CLOSE = re.compile(r"\{%-?\s*end(?:for|if|unless|case|capture)\b")
-# kramdown extras Jupyter's Markdown does not know.
-_IAL = re.compile(r"^\s*(?:>\s*)*\{:(?P<body>.*)\}\s*$")
-_DATA_FILE = re.compile(r"""(?<![\w-])data-file\s*=\s*(?:"(?P<dq>[^"]*)"|'(?P<sq>[^']*)')""")
+# kramdown extras Jupyter's Markdown does not know (the parse finds the attribute lines).
 _HEADING_ID = re.compile(r"^(#{1,6}\s.*?)\s*\{#[\w-]+\}\s*$")
 _INLINE_MATH = re.compile(r"\$\$(.+?)\$\$")
 _ROOT_LINK = re.compile(r"(?P<bang>!?)\[(?P<text>[^\]]*)\]\((?P<path>/(?!/)[^)\s]*)\)")
@@ -123,17 +111,16 @@ def build(path: Path, root: Path = ROOT) -> NotebookNode:
     front_lines, body_start = split_front_matter(lines)
     front = yaml.safe_load("\n".join(front_lines)) or {}
     body = [""] * body_start + lines[body_start:]
-    layout = _Layout(body)
 
     cells = [new_markdown_cell(_introduction(front, page)), new_code_cell(SETUP_CODE)]
     cells[1].metadata["tags"] = ["setup"]
     prose: list[str] = []
     cursor = body_start
     for block in page.blocks:
-        start, end = layout.fences[block.line]
-        prose += _markdown(body[cursor:start], cursor, layout, root)
-        cursor = end + 1 if end in layout.attributes else end
-        shown = layout.data_file.get(start) or block.include
+        start, end = block.fence
+        prose += _markdown(body[cursor:start], cursor, page, root)
+        cursor = end + 1 if block.attributes is not None else end
+        shown = block.data_file or block.include
         if block.skip is not None:
             prose += _skipped(block, shown)
             continue
@@ -147,7 +134,7 @@ def build(path: Path, root: Path = ROOT) -> NotebookNode:
         if block.include:
             cell.metadata["sw2sim"]["file"] = block.include
         cells.append(cell)
-    prose += _markdown(body[cursor:], cursor, layout, root)
+    prose += _markdown(body[cursor:], cursor, page, root)
     if text := _tidy(prose):
         cells.append(new_markdown_cell(text))
 
@@ -185,52 +172,24 @@ def _skipped(block: Block, shown: str | None) -> list[str]:
             "where that is available.", "", fence + "python", block.code.rstrip("\n"), fence]
 
 
-class _Layout:
-    """Where a page's fences, attribute lines and HTML blocks are, by 0-based body line."""
-
-    def __init__(self, body: list[str]) -> None:
-        self.fences: dict[int, tuple[int, int]] = {}  # 1-based first code line -> [start, end)
-        self.code: set[int] = set()  # lines inside a fence or an indented code block
-        self.html: list[tuple[int, int]] = []
-        self.attributes: set[int] = set()  # attribute lines right after a fence
-        self.data_file: dict[int, str] = {}  # fence start -> the file its attribute line names
-        for token in MarkdownIt("commonmark").parse("\n".join(body)):
-            if token.map is None:
-                continue
-            start, end = token.map
-            if token.type == "html_block":
-                self.html.append((start, end))
-            if token.type not in ("fence", "code_block"):
-                continue
-            self.code.update(range(start, end))
-            if token.type == "fence":
-                self.fences[start + 2] = (start, end)
-            if end < len(body) and (m := _IAL.match(body[end])):
-                self.attributes.add(end)
-                if f := _DATA_FILE.search(m["body"]):
-                    self.data_file[start] = f["dq"] if f["dq"] is not None else f["sq"]
-
-
-def _markdown(lines: list[str], first: int, layout: _Layout, root: Path) -> list[str]:
+def _markdown(lines: list[str], first: int, page: Page, root: Path) -> list[str]:
     """Page lines (from 0-based line `first`) as Jupyter Markdown."""
     out: list[str] = []
-    liquid = _liquid_regions(lines, first, layout)
-    raw_depth = 0
+    liquid = _liquid_regions(lines, first, page)
     for n, text in enumerate(lines, start=first):
         if any(start == n for start, _ in liquid):
             out += ["", GENERATED_NOTE, ""]
         if any(start <= n < end for start, end in liquid):
             continue
-        raw_depth += _raw_change(text)
-        text = _RAW_TAG.sub("", text)
-        if n in layout.code:
-            if raw_depth == 0 and (m := _INCLUDE_CODE.search(text)):
+        text = without_raw_tags(text)
+        if n in page.code_lines:
+            if not page.in_raw(n) and (m := INCLUDE_CODE.search(text)):
                 text = text[:m.start()] + _included(m["args"], root) + text[m.end():]
-            if n - 1 not in layout.code and (name := layout.data_file.get(n)):
+            if n - 1 not in page.code_lines and (name := page.data_files.get(n)):
                 out += [f"File `{name}`:", ""]
             out.append(text)
             continue
-        if _IAL.match(text):
+        if n in page.attribute_lines:
             continue
         text = _HEADING_ID.sub(r"\1", text)
         if not text.strip().startswith("$$"):
@@ -242,14 +201,13 @@ def _markdown(lines: list[str], first: int, layout: _Layout, root: Path) -> list
     return out
 
 
-def _liquid_regions(lines: list[str], first: int, layout: _Layout) -> list[tuple[int, int]]:
+def _liquid_regions(lines: list[str], first: int, page: Page) -> list[tuple[int, int]]:
     """Spans of template code the notebook cannot evaluate, widened to whole HTML blocks."""
     spans: list[tuple[int, int]] = []
-    depth, start, raw = 0, None, 0
+    depth, start = 0, None
     for n, text in enumerate(lines, start=first):
-        raw += _raw_change(text)
-        stripped = _INCLUDE_CODE.sub("", _RAW_TAG.sub("", text))
-        if raw > 0 or n in layout.code or not _LIQUID.search(stripped):
+        stripped = INCLUDE_CODE.sub("", without_raw_tags(text))
+        if page.in_raw(n) or n in page.code_lines or not _LIQUID.search(stripped):
             if depth == 0 and start is not None:
                 spans.append((start, n))
                 start = None
@@ -265,7 +223,7 @@ def _liquid_regions(lines: list[str], first: int, layout: _Layout) -> list[tuple
     # An HTML block cut in the middle would leave its other half as stray tags.
     widened = []
     for a, b in spans:
-        for h0, h1 in layout.html:
+        for h0, h1 in page.html_blocks:
             if h0 < b and h1 > a:
                 a, b = max(first, min(a, h0)), min(first + len(lines), max(b, h1))
         widened.append((a, b))
@@ -279,19 +237,13 @@ def _liquid_regions(lines: list[str], first: int, layout: _Layout) -> list[tuple
     return merged
 
 
-def _raw_change(text: str) -> int:
-    """How a line changes the depth of {% raw %} regions: inside them Liquid is shown as is."""
-    return len(_RAW_OPEN.findall(text)) - len(_RAW_CLOSE.findall(text))
-
-
 def _included(args: str, root: Path) -> str:
     """What `{% include_code %}` puts in a page (as _plugins/include_code.rb does)."""
-    m = _INCLUDE_ARGS.match(args.strip())
-    if m is None:
+    tag = include_code_arguments(args)
+    if tag is None:
         raise ValueError(f"include_code expects `path [indent=N]`, got {args!r}")
-    path = m["dq"] or m["sq"] or m["bare"]
-    pad = " " * int(m["n"] or 0)
-    lines = (root / path).read_text(encoding="utf-8").replace("\r\n", "\n").rstrip().split("\n")
+    pad = " " * tag.indent
+    lines = (root / tag.path).read_text(encoding="utf-8").replace("\r\n", "\n").rstrip().split("\n")
     return "\n".join(line if i == 0 or not line else pad + line for i, line in enumerate(lines))
 
 
@@ -350,15 +302,12 @@ def output_hash(nb: NotebookNode, root: Path = ROOT) -> str:
     """A hash of everything a notebook's outputs depend on: its code cells, the repository
     files that code imports or names by path, the Python and library versions."""
     sources = [c.source for c in nb.cells if c.cell_type == "code"]
-    h = hashlib.sha256()
+    fingerprint = Fingerprint()
     for source in sources:
-        h.update(source.encode() + b"\0")
-    for file in sorted(_files_read(sources, root)):
-        h.update(file.relative_to(root).as_posix().encode() + b"\0" + file.read_bytes())
-    h.update(f"python {sys.version_info.major}.{sys.version_info.minor}".encode())
-    for lib in KERNEL_LIBRARIES:
-        h.update(f"{lib}=={version(lib)}".encode())
-    return h.hexdigest()[:16]
+        fingerprint.text(source.encode() + b"\0")
+    return (fingerprint.files(_files_read(sources, root), root, separator=b"\0")
+            .text(f"python {sys.version_info.major}.{sys.version_info.minor}")
+            .libraries(KERNEL_LIBRARIES).hexdigest())
 
 
 def _files_read(sources: list[str], root: Path) -> set[Path]:
@@ -367,32 +316,19 @@ def _files_read(sources: list[str], root: Path) -> set[Path]:
     modules: set[Path] = set()
     data: set[Path] = set()
     for source in sources:
+        modules |= freshness.imports_of(source)
         for node in ast.walk(ast.parse(source)):
-            names: list[str] = []
-            if isinstance(node, ast.Import):
-                names = [alias.name for alias in node.names]
-            elif isinstance(node, ast.ImportFrom) and node.module and not node.level:
-                names = [node.module, *(f"{node.module}.{alias.name}" for alias in node.names)]
-            elif isinstance(node, ast.Constant) and isinstance(node.value, str):
+            if isinstance(node, ast.Constant) and isinstance(node.value, str):
                 data.update(_named_files(node.value, root))
-            for name in names:
-                parts = name.split(".")
-                for i in range(1, len(parts) + 1):
-                    if (file := _module_file(".".join(parts[:i]), None)) is not None:
-                        modules.add(file)
-    return _imported_closure(sorted(modules)) | data
+    # course/media.py is the build's own, as for the figures (their modules import it too).
+    return freshness.imported_closure(sorted(modules), leave_out=[media.MODULE]) | data
 
 
 def _named_files(text: str, root: Path) -> list[Path]:
     """The repository files a string names, if it is a relative path inside the repository."""
     if not re.fullmatch(r"[\w.-]+(?:/[\w.-]+)+/?|[\w-]+\.\w+", text) or ".." in text:
         return []
-    path = root / text
-    if path.is_file():
-        return [path]
-    if path.is_dir():
-        return [f for f in path.rglob("*") if f.is_file() and "__pycache__" not in f.parts]
-    return []
+    return freshness.files_in(root / text)
 
 
 def execute(nb: NotebookNode, timeout: float) -> NotebookNode:
@@ -443,8 +379,9 @@ def is_current(page_path: Path, root: Path = ROOT) -> bool:
         return False
     committed = nbformat.read(file, as_version=4)
     fresh = build(page_path, root)
-    return (source_form(committed) == source_form(fresh)
-            and committed.metadata.get("sw2sim", {}).get("outputs_of") == output_hash(fresh, root))
+    return freshness.is_current(file, committed.metadata.get("sw2sim", {}).get("outputs_of"),
+                                lambda: output_hash(fresh, root),
+                                as_made=lambda: source_form(committed) == source_form(fresh))
 
 
 def refresh(page: str, force: bool = False) -> tuple[str, float]:
@@ -478,52 +415,32 @@ def refresh(page: str, force: bool = False) -> tuple[str, float]:
 
 
 def main(argv: list[str] | None = None) -> int:
-    parser = argparse.ArgumentParser(prog="python -m course.notebooks",
-                                     description=__doc__.splitlines()[0])
-    parser.add_argument("--force", action="store_true", help="run every notebook again")
-    parser.add_argument("--check", action="store_true",
-                        help="only list stale notebooks; exit 1 if any")
-    parser.add_argument("--jobs", type=int, default=len(os.sched_getaffinity(0)),
-                        help="notebooks run at once, each in a kernel of its own (default: cores)")
-    parser.add_argument("only", nargs="*", help="only pages whose path contains one of these")
-    args = parser.parse_args(argv)
-
-    pages = lesson_pages()
-    if args.only:
-        pages = [p for p in pages if any(s in p.as_posix() for s in args.only)]
+    args = freshness.command_line(
+        argv, prog="python -m course.notebooks",
+        description=" ".join(__doc__.split("\n\n")[0].split()),  # its first sentence
+        force="run every notebook again", check="only list stale notebooks; exit 1 if any",
+        jobs="notebooks run at once, each in a kernel of its own (default: cores)",
+        only="only pages whose path contains one of these")
+    pages = freshness.chosen(lesson_pages(), args.only, Path.as_posix)
     wanted = {notebook_name(p) for p in lesson_pages()}
     orphans = sorted(f for f in FOLDER.glob("*.ipynb") if f.name not in wanted)
     if args.check:
-        stale = [p for p in pages if not is_current(p)]
-        for p in stale:
-            print(f"stale: {notebook_file(p).relative_to(ROOT)} (from {p.relative_to(ROOT)})")
-        for f in orphans:
-            print(f"no page: {f.relative_to(ROOT)}")
-        return 1 if stale or orphans else 0
+        return freshness.report_stale([
+            *(f"stale: {notebook_file(p).relative_to(ROOT)} (from {p.relative_to(ROOT)})"
+              for p in pages if not is_current(p)),
+            *(f"no page: {f.relative_to(ROOT)}" for f in orphans)])
     for f in orphans:
         f.unlink()
         print(f"removed {f.relative_to(ROOT)}: its page has no Python to run any more")
     counts: dict[str, int] = {}
-    for page, (status, seconds) in _refresh_all(pages, args.force, args.jobs):
+    done = freshness.run_jobs(refresh, [(p, (str(p), args.force)) for p in pages], args.jobs)
+    for page, (status, seconds) in done:
         counts[status] = counts.get(status, 0) + 1
         if status != "up to date":
             name = notebook_file(page).relative_to(ROOT)
             print(f"{status:13} {name} ({seconds:.1f} s)", flush=True)
     print("notebooks: " + ", ".join(f"{n} {status}" for status, n in sorted(counts.items())))
     return 0
-
-
-def _refresh_all(pages: list[Path], force: bool, jobs: int):
-    """Refresh the pages' notebooks, `jobs` at a time; yield (page, (status, seconds))."""
-    if jobs <= 1:
-        for page in pages:
-            yield page, refresh(str(page), force)
-        return
-    # spawn: each worker starts clean, without this process's threads
-    with ProcessPoolExecutor(jobs, mp_context=get_context("spawn")) as pool:
-        pending = {pool.submit(refresh, str(page), force): page for page in pages}
-        for job in as_completed(pending):
-            yield pending[job], job.result()
 
 
 if __name__ == "__main__":

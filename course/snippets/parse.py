@@ -1,9 +1,14 @@
-"""Find the ```python blocks of a lesson page, with their page lines and skip reasons."""
+"""Find the ```python blocks of a lesson page, with their page lines and skip reasons.
+
+The parse also records where the page's other syntax is, for course.notebooks to turn the
+rest of the page into notebook Markdown: every code listing and its attribute line,
+`{% raw %}` regions and HTML blocks, all by 0-based page line.
+"""
 
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 from markdown_it import MarkdownIt
@@ -14,10 +19,12 @@ LANGUAGE = "python"
 # A kramdown block attribute list on a line of its own, possibly inside a blockquote.
 _IAL = re.compile(r"^\s*(?:>\s*)*\{:(?P<body>.*)\}\s*$")
 _SKIP = re.compile(r"""(?<![\w-])data-skip\s*=\s*(?:"(?P<dq>[^"]*)"|'(?P<sq>[^']*)')""")
-_INCLUDE = re.compile(r"^\{%-?\s*include_code\s+(?P<args>.*?)\s*-?%\}$")
-# Same arguments as _plugins/include_code.rb: a path, optionally quoted, and `indent=N`
-# (which only matters for the rendered page: the fence's content arrives dedented here).
-_INCLUDE_ARGS = re.compile(r"""^(?:"(?P<dq>[^"]+)"|'(?P<sq>[^']+)'|(?P<bare>\S+))(?:\s+indent=\d+)?$""")
+_DATA_FILE = re.compile(r"""(?<![\w-])data-file\s*=\s*(?:"(?P<dq>[^"]*)"|'(?P<sq>[^']*)')""")
+# An `{% include_code ... %}` tag anywhere in a line; `args` is what follows the name.
+INCLUDE_CODE = re.compile(r"\{%-?\s*include_code\s+(?P<args>.*?)\s*-?%\}")
+# Same arguments as _plugins/include_code.rb: a path, optionally quoted, and `indent=N`.
+_INCLUDE_ARGS = re.compile(
+    r"""^(?:"(?P<dq>[^"]+)"|'(?P<sq>[^']+)'|(?P<bare>\S+))(?:\s+indent=(?P<indent>\d+))?$""")
 _RAW_TAG = re.compile(r"\{%-?\s*(?P<end>end)?raw\s*-?%\}")
 _TIMEOUT = re.compile(r"^snippet_timeout\s*:\s*(?P<value>\S+)\s*(?:#.*)?$")
 _NO_LIQUID = re.compile(r"^render_with_liquid\s*:\s*false\s*(?:#.*)?$")
@@ -34,6 +41,9 @@ class Block:
     code: str  # what runs: the fence's text, or the included file's text
     skip: str | None = None  # reason from `{: data-skip="..."}`, None = runs
     include: str | None = None  # file named by `{% include_code ... %}`
+    fence: tuple[int, int] = (0, 0)  # 0-based page lines [start, end) of the fence, ``` included
+    attributes: int | None = None  # 0-based line of the `{: ...}` line right after the fence
+    data_file: str | None = None  # its `data-file="..."`: the file shown above the block
 
     @property
     def filename(self) -> str:
@@ -65,6 +75,14 @@ class Page:
     blocks: list[Block] = field(default_factory=list)
     timeout: float = DEFAULT_TIMEOUT
     errors: list[ParseError] = field(default_factory=list)
+    # Where the rest of the page's syntax is, by 0-based page line. Code: in a fence of any
+    # language (its ``` lines too) or an indented code block.
+    code_lines: set[int] = field(default_factory=set)
+    data_files: dict[int, str] = field(default_factory=dict)  # first line of code -> its data-file
+    attribute_lines: set[int] = field(default_factory=set)  # kramdown `{: ...}` lines outside code
+    # (line of a {% raw %}, line of its {% endraw %}; the page's end if there is none)
+    raw_regions: list[tuple[int, int]] = field(default_factory=list)
+    html_blocks: list[tuple[int, int]] = field(default_factory=list)  # [start, end) of HTML blocks
 
     @property
     def runnable(self) -> list[Block]:
@@ -73,6 +91,35 @@ class Page:
     @property
     def skipped(self) -> list[Block]:
         return [b for b in self.blocks if b.skip is not None]
+
+    def in_raw(self, line: int) -> bool:
+        """Whether Liquid is inside a `{% raw %}` region at the end of 0-based `line`: from
+        the line that opens it to the line before the one that closes it."""
+        return any(start <= line < end for start, end in self.raw_regions)
+
+
+@dataclass(frozen=True)
+class IncludeCode:
+    """The arguments of an `{% include_code path [indent=N] %}` tag."""
+
+    path: str  # from the repository root
+    # Spaces the site puts before every line but the first, for a fence in a list (only the
+    # rendered page needs them: the runner gets the fence's content dedented).
+    indent: int = 0
+
+
+def include_code_arguments(args: str) -> IncludeCode | None:
+    """An include_code tag's arguments as _plugins/include_code.rb reads them, or None if
+    they are not `path [indent=N]`. The path is not checked."""
+    a = _INCLUDE_ARGS.match(args.strip())
+    if a is None:
+        return None
+    return IncludeCode(a["dq"] or a["sq"] or a["bare"], int(a["indent"] or 0))
+
+
+def without_raw_tags(text: str) -> str:
+    """Text as Liquid leaves it: without `{% raw %}` and `{% endraw %}` tags."""
+    return _RAW_TAG.sub("", text)
 
 
 def find_pages(root: Path) -> list[Path]:
@@ -119,7 +166,6 @@ class _Scan:
     root: Path
     body: list[str]  # page lines, front matter blanked
     liquid: bool = True  # whether Jekyll runs Liquid over the page
-    code_lines: set[int] = field(default_factory=set)  # 0-based lines inside code
     attached: set[int] = field(default_factory=set)  # 0-based attribute lines after a fence
 
     def error(self, line: int, message: str) -> None:
@@ -140,15 +186,20 @@ class _Scan:
                 self.liquid = False
 
     def fences(self) -> None:
-        raw = _raw_regions(self.body)
+        raw = self.page.raw_regions = _raw_regions(self.body)
         for token in MarkdownIt("commonmark").parse("\n".join(self.body)):
+            if token.type == "html_block" and token.map is not None:
+                self.page.html_blocks.append((token.map[0], token.map[1]))
             if token.type not in ("fence", "code_block") or token.map is None:
                 continue
             start, end = token.map
-            self.code_lines.update(range(start, end))
+            self.page.code_lines.update(range(start, end))
+            ial = _IAL.match(self.body[end]) if end < len(self.body) else None
+            if ial and (f := _DATA_FILE.search(ial["body"])):
+                self.page.data_files[start] = f["dq"] if f["dq"] is not None else f["sq"]
             if token.type != "fence":
                 continue
-            if end < len(self.body) and _IAL.match(self.body[end]):
+            if ial:
                 self.attached.add(end)
             info = token.info.strip()
             if info != LANGUAGE:
@@ -164,7 +215,8 @@ class _Scan:
             protected = any(a <= end - 1 and b >= start for a, b in raw)
             block = self.block(token.content, start, end, protected)
             if block is not None:
-                self.page.blocks.append(block)
+                self.page.blocks.append(replace(block, fence=(start, end), attributes=end if ial else None,
+                                                data_file=self.page.data_files.get(start)))
 
     def block(self, content: str, start: int, end: int, protected: bool) -> Block | None:
         """The Block of a python fence over 0-based lines [start, end), or None on error."""
@@ -179,8 +231,8 @@ class _Scan:
             skip = reason.strip()
 
         # Liquid runs before Markdown on the site: the reader sees code without raw tags.
-        code = _RAW_TAG.sub("", content)
-        if m := _INCLUDE.match(code.strip()):
+        code = without_raw_tags(content)
+        if m := INCLUDE_CODE.fullmatch(code.strip()):
             return self.include(m["args"], line, skip)
         if "include_code" in code and "{%" in code:
             self.error(line, "{% include_code ... %} must be the only content of its ```python fence")
@@ -196,11 +248,11 @@ class _Scan:
 
     def include(self, args: str, line: int, skip: str | None) -> Block | None:
         """The Block running the file an `{% include_code %}` fence shows."""
-        a = _INCLUDE_ARGS.match(args)
-        if a is None:
+        tag = include_code_arguments(args)
+        if tag is None:
             self.error(line, f"include_code expects `path [indent=N]`, got {args!r}")
             return None
-        path = a["dq"] or a["sq"] or a["bare"]
+        path = tag.path
         if path.startswith(("/", "~")) or ".." in re.split(r"[/\\]", path):
             self.error(line, f"include_code: {path} must be relative to the repository root, without '..'")
             return None
@@ -211,9 +263,14 @@ class _Scan:
         return Block(self.page.path, line, target.read_text(encoding="utf-8"), skip, path)
 
     def stray_attributes(self) -> None:
-        """A data-skip line kramdown would not attach to a fence hides nothing: say so."""
+        """Note the attribute lines outside code. A data-skip line kramdown would not attach
+        to a fence hides nothing: say so."""
         for i, text in enumerate(self.body):
-            if i in self.attached or i in self.code_lines:
+            if i in self.page.code_lines:
+                continue
+            if _IAL.match(without_raw_tags(text)):
+                self.page.attribute_lines.add(i)
+            if i in self.attached:
                 continue
             if (m := _IAL.match(text)) and "data-skip" in m["body"]:
                 self.error(

@@ -100,3 +100,87 @@ def test_figure_matches_what_its_code_makes(fig, made, current):
     assert a.shape == b.shape, f"{fig.output}: size {a.shape} now {b.shape}; run `make media`"
     rms = float(np.sqrt(np.mean((a - b) ** 2)))
     assert rms <= PNG_RMS_TOLERANCE, f"{fig.output}: RMS difference {rms:.3f}; run `make media`"
+
+
+# The freshness mechanism the figures share with the notebooks (course/freshness.py).
+
+def test_the_import_closure_follows_repository_imports_and_leaves_out_what_it_is_told(tmp_path):
+    from course import freshness, media
+
+    script = tmp_path / "script.py"
+    script.write_text("import helper\n")
+    (tmp_path / "helper.py").write_text(
+        "import numpy\n\ndef later():\n    from course import plotting\n    import course.media\n")
+    course = ROOT / "course"
+    closure = freshness.imported_closure([script])
+    assert {script, tmp_path / "helper.py", course / "__init__.py", course / "plotting.py",
+            course / "media.py", course / "freshness.py"} <= closure
+    assert not [f for f in closure if "site-packages" in f.parts]  # numpy is no repository file
+    without = freshness.imported_closure([script], leave_out=[media.MODULE])
+    assert course / "media.py" not in without and course / "freshness.py" not in without
+    assert course / "plotting.py" in without
+
+
+def test_a_fingerprint_changes_with_any_file_and_not_with_their_order(tmp_path):
+    from course.freshness import Fingerprint
+
+    a, b = tmp_path / "a.txt", tmp_path / "b.txt"
+    a.write_text("one")
+    b.write_text("two")
+    first = Fingerprint().files([a, b], tmp_path).libraries(["numpy"]).hexdigest()
+    assert first == Fingerprint().files([b, a, a], tmp_path).libraries(["numpy"]).hexdigest()
+    assert first != Fingerprint().files([a, b], tmp_path, separator=b"\0").libraries(["numpy"]).hexdigest()
+    b.write_text("three")
+    assert first != Fingerprint().files([a, b], tmp_path).libraries(["numpy"]).hexdigest()
+    assert len(first) == 16
+
+
+def test_a_manifest_vouches_for_a_file_only_as_it_was_made_from_the_same_inputs(tmp_path):
+    from course import freshness
+
+    made = tmp_path / "figure.svg"
+    made.write_text("<svg/>")
+    manifest = {"figure.svg": freshness.manifest_entry(made, "inputs-1")}
+    freshness.write_manifest(tmp_path / "manifest.json", manifest)
+    manifest = freshness.read_manifest(tmp_path / "manifest.json")
+    assert freshness.is_recorded(manifest, "figure.svg", made, lambda: "inputs-1")
+    assert not freshness.is_recorded(manifest, "figure.svg", made, lambda: "inputs-2")
+    assert not freshness.is_recorded(manifest, "other.svg", made, lambda: "inputs-1")
+    made.write_text("<svg>by hand</svg>")
+
+    def never() -> str:
+        raise AssertionError("the inputs are not hashed when the file already tells")
+
+    assert not freshness.is_recorded(manifest, "figure.svg", made, never)
+    made.unlink()
+    assert not freshness.is_recorded(manifest, "figure.svg", made, never)
+    assert freshness.read_manifest(tmp_path / "none.json") == {}
+
+
+@pytest.mark.parametrize("at_once", [1, 2])
+def test_jobs_run_in_worker_processes_and_each_result_comes_back_with_its_item(tmp_path, at_once):
+    from course import freshness
+
+    files = []
+    for i in range(3):
+        files.append(tmp_path / f"{i}.txt")
+        files[-1].write_text(str(i))
+    done = dict(freshness.run_jobs(freshness.output_digest, [(f.name, (f,)) for f in files], at_once))
+    assert done == {f.name: freshness.output_digest(f) for f in files}
+
+
+def test_the_command_line_of_figures_and_notebooks(capsys):
+    from course import freshness, media
+
+    helps = dict(prog="p", description="d", force="f", check="c", jobs="j", only="o")
+    args = freshness.command_line([], **helps)
+    assert (args.check, args.force, args.jobs, args.only) == (False, False, freshness.cores(), [])
+    args = freshness.command_line(["--check", "--jobs", "3", "a", "b"], **helps)
+    assert (args.check, args.jobs, args.only) == (True, 3, ["a", "b"])
+    assert freshness.chosen(["xa", "yb", "zc"], ["a", "b"], str) == ["xa", "yb"]
+    assert freshness.chosen(["xa", "yb"], [], str) == ["xa", "yb"]
+    assert freshness.report_stale([]) == 0
+    assert freshness.report_stale(f"stale: {n}" for n in "xy") == 1
+    assert capsys.readouterr().out == "stale: x\nstale: y\n"
+    assert media.main(["--check", "no figure has this in its path"]) == 0
+    assert capsys.readouterr().out == ""

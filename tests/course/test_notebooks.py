@@ -199,3 +199,34 @@ def test_page_conventions_become_plain_notebook_markdown(tmp_path):
     assert "```yaml\na: 1\nb: 2\n```" in rest  # include_code in a shown block is expanded
     assert "Shown as is: {{ not liquid }}" in rest and "raw %}" not in rest
     assert notebooks.source_form(build(page, tmp_path)) == notebooks.source_form(nb)
+
+
+def test_an_include_code_in_a_list_is_indented_as_the_site_shows_it(tmp_path):
+    (tmp_path / "_pages").mkdir()
+    (tmp_path / "examples").mkdir()
+    (tmp_path / "examples" / "config.yaml").write_text("a: 1\n\nb: 2\n")
+    page = tmp_path / "_pages" / "listed.md"
+    page.write_text("---\ntitle: Listed\n---\n\n```python\nx = 1\n```\n\n1. Its settings:\n\n"
+                    "   ```yaml\n   {% include_code examples/config.yaml indent=3 %}\n   ```\n"
+                    "   {: data-file=\"examples/config.yaml\"}\n")
+    rest = build(page, tmp_path).cells[-1].source
+    assert "File `examples/config.yaml`:" in rest
+    assert "   ```yaml\n   a: 1\n\n   b: 2\n   ```" in rest  # blank lines stay blank
+    assert "{:" not in rest
+
+
+def test_the_course_build_imports_no_private_name_from_another_module():
+    import ast
+
+    crossing = []
+    for file in sorted((ROOT / "course").rglob("*.py")):
+        for node in ast.walk(ast.parse(file.read_text(encoding="utf-8"))):
+            if isinstance(node, ast.ImportFrom) and (node.level or (node.module or "").startswith("course")):
+                crossing += [f"{file.relative_to(ROOT)}: {node.module}.{a.name}" for a in node.names
+                             if a.name.startswith("_") and not a.name.endswith("__")]
+    assert not crossing
+
+
+def test_check_with_nothing_chosen_finds_nothing_stale(capsys):
+    assert notebooks.main(["--check", "no page has this in its path"]) == 0
+    assert capsys.readouterr().out == ""
