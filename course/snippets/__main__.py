@@ -7,6 +7,7 @@ import sys
 from pathlib import Path
 
 from . import find_pages, format_failure, format_skipped, format_summary, parse_page, run_page
+from .execute import shutdown
 
 
 def find_root(start: Path) -> Path:
@@ -22,6 +23,8 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("pages", nargs="*", type=Path, help="Markdown pages (default: every _pages/**/*.md)")
     parser.add_argument("--root", type=Path, help="repository root: the blocks' working directory")
     parser.add_argument("--timeout", type=float, help="seconds per block, overriding the pages' own")
+    parser.add_argument("--plain", action="store_true",
+                        help="start every page's process as a plain `python` subprocess, not from the fork server")
     args = parser.parse_args(argv)
     root = (args.root or find_root(Path.cwd())).resolve()
     pages = args.pages or find_pages(root)
@@ -30,15 +33,18 @@ def main(argv: list[str] | None = None) -> int:
         return 1
 
     failed, skipped, ran = 0, [], 0
-    for path in pages:
-        page = parse_page(path, root)
-        result = run_page(page, root, args.timeout)
-        print(format_summary(result), flush=True)
-        if not result.ok:
-            failed += 1
-            print(format_failure(result), flush=True)
-        ran += len(result.ran)
-        skipped += page.skipped
+    try:
+        for path in pages:
+            page = parse_page(path, root)
+            result = run_page(page, root, args.timeout, fork=False if args.plain else None)
+            print(format_summary(result), flush=True)
+            if not result.ok:
+                failed += 1
+                print(format_failure(result), flush=True)
+            ran += len(result.ran)
+            skipped += page.skipped
+    finally:
+        shutdown()
     print(f"\n{len(pages)} pages, {failed} failed; snippet blocks run: {ran}; skipped snippet blocks: {len(skipped)}")
     for line in format_skipped(skipped):
         print(f"  {line}")

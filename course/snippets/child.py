@@ -1,6 +1,10 @@
 """Child process: run one page's blocks in one namespace, as a reader pasting them would.
 
 Usage: python child.py JOB.json REPORT_FD   (stdlib only: it must not import sw2sim)
+       python child.py --serve CONTROL_FD PRELOAD_JSON
+                                           the fork server (forkserver.py): imports the
+                                           libraries, then forks one process per page that
+                                           runs `main` as the first form would
 
 JOB.json holds {"page": str, "timeout": float, "blocks": [{"line", "code", "filename"}]}.
 Events go to REPORT_FD as JSON lines, never to stdout/stderr, which belong to the blocks:
@@ -127,4 +131,12 @@ def _flush() -> None:
 
 
 if __name__ == "__main__":
-    main(sys.argv)
+    if sys.argv[1:2] == ["--serve"]:
+        # What is imported from here on, a page process does not have: the server stashes it.
+        keep = set(sys.modules)
+        import runpy
+
+        server = runpy.run_path(os.path.join(os.path.dirname(__file__), "forkserver.py"), run_name="__snippets_forkserver__")
+        server["serve"](main, keep, int(sys.argv[2]), json.loads(sys.argv[3]))
+    else:
+        main(sys.argv)

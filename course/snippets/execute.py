@@ -1,7 +1,20 @@
-"""Run a page's blocks in a fresh Python process and say where it failed."""
+"""Run a page's blocks in a fresh Python process and say where it failed.
+
+Each page gets a process of its own, which starts as a fresh interpreter would. Two ways:
+
+- forked from the fork server (forkserver.py), a process that has already imported the
+  heavy libraries (PRELOAD), so a page's `import numpy` is instant while its sys.modules
+  still starts empty of them; Linux and other Unix systems but macOS;
+- a plain subprocess, `python -c ... child.py` (elsewhere, when the server cannot start,
+  or with `run_page(..., fork=False)` or COURSE_SNIPPETS_FORK=0 in the environment).
+
+The server starts with the first page a process runs (that page runs in a plain process
+meanwhile) and stops when the process exits, or with `shutdown()`.
+"""
 
 from __future__ import annotations
 
+import atexit
 import json
 import os
 import select
@@ -9,16 +22,35 @@ import signal
 import subprocess
 import sys
 import tempfile
+import threading
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Any, Union
 
 from sw2sim import gl
 
+from .forkserver import AVAILABLE, ForkedProcess, ForkServer, ForkServerError
 from .parse import Block, Page, ParseError
 
 CHILD = Path(__file__).resolve().with_name("child.py")
+BOOT = "import runpy, sys; sys.argv = sys.argv[1:]; runpy.run_path(sys.argv[0], run_name='__main__')"
+# What the fork server imports: the third-party libraries that take a page process long to
+# import (not sw2sim or course: they import in a few hundredths of a second after these).
+PRELOAD = (
+    "numpy",
+    "mujoco",
+    "matplotlib.pyplot",  # with the Agg backend: the server has the pages' environment
+    "trimesh",
+    "scipy.spatial",
+    "PIL.Image",
+    "yaml",
+    "lxml.etree",
+)
+# "0" (or "no", "false", "off"): every page in a plain subprocess; "1": wait for the server.
+FORK_VARIABLE = "COURSE_SNIPPETS_FORK"
+# Environment variables that change from test to test but not what the server imports.
+VOLATILE = frozenset({"PYTEST_CURRENT_TEST"})
 # Time between the child's own stack dump and the parent's kill on a timeout.
 DUMP_GRACE = 1.0
 # Interpreter start-up may be slow on a busy machine: never hold it to a tiny block limit.
@@ -69,8 +101,12 @@ def child_command(job: Path, report_fd: int) -> list[str]:
     reader's fresh interpreter does not do. `-c` also gives sys.path[0] == "" (the working
     directory), as in an interactive interpreter.
     """
-    boot = "import runpy, sys; sys.argv = sys.argv[1:]; runpy.run_path(sys.argv[0], run_name='__main__')"
-    return [sys.executable, "-c", boot, str(CHILD), str(job), str(report_fd)]
+    return [sys.executable, "-c", BOOT, str(CHILD), str(job), str(report_fd)]
+
+
+def server_command(control_fd: int) -> list[str]:
+    """The fork server's command line: a page process's, with child.py's `--serve`."""
+    return [sys.executable, "-c", BOOT, str(CHILD), "--serve", str(control_fd), json.dumps(PRELOAD)]
 
 
 def child_env() -> dict[str, str]:
@@ -83,10 +119,14 @@ def child_env() -> dict[str, str]:
     return env
 
 
-def run_page(page: Page, root: Path, timeout: float | None = None) -> PageResult:
+def run_page(page: Page, root: Path, timeout: float | None = None, *, fork: bool | None = None) -> PageResult:
     """Run the page's runnable blocks in order in one fresh process with cwd `root`.
 
-    `timeout` (seconds per block) overrides the page's `snippet_timeout`.
+    `timeout` (seconds per block) overrides the page's `snippet_timeout`. `fork`: True,
+    fork the process from the fork server (starting it and waiting for it if need be);
+    False, a plain subprocess; None (default), as COURSE_SNIPPETS_FORK says, else the
+    server once it has been started (the first page runs in a plain subprocess meanwhile).
+    Either way, a server that cannot start means plain subprocesses.
     """
     result = PageResult(page, errors=list(page.errors))
     blocks = page.runnable
@@ -111,16 +151,7 @@ def run_page(page: Page, root: Path, timeout: float | None = None) -> PageResult
         with open(output, "ab") as sink:
             read_fd, write_fd = os.pipe()
             try:
-                proc = subprocess.Popen(
-                    child_command(job, write_fd),
-                    cwd=root,
-                    env=child_env(),
-                    stdin=subprocess.DEVNULL,
-                    stdout=sink,
-                    stderr=subprocess.STDOUT,
-                    pass_fds=(write_fd,),
-                    start_new_session=True,  # one process group: a timeout kills grandchildren too
-                )
+                proc = _start(job, root, write_fd, sink, fork)
             finally:
                 os.close(write_fd)
             try:
@@ -132,8 +163,94 @@ def run_page(page: Page, root: Path, timeout: float | None = None) -> PageResult
     return result
 
 
+Process = Union["subprocess.Popen[bytes]", ForkedProcess]
+
+
+def _start(job: Path, root: Path, write_fd: int, sink: Any, fork: bool | None) -> Process:
+    """The page's process, forked by the server or else a plain subprocess."""
+    env = child_env()
+    server = _server(root, env, fork)
+    if server is not None:
+        try:
+            return server.start(job, root, env, write_fd, sink.fileno())
+        except ForkServerError as exc:
+            _give_up(server, str(exc))
+    return subprocess.Popen(
+        child_command(job, write_fd),
+        cwd=root,
+        env=env,
+        stdin=subprocess.DEVNULL,
+        stdout=sink,
+        stderr=subprocess.STDOUT,
+        pass_fds=(write_fd,),
+        start_new_session=True,  # one process group: a timeout kills grandchildren too
+    )
+
+
+_servers: dict[tuple[Any, ...], ForkServer] = {}  # by root and environment
+_failed: set[tuple[Any, ...]] = set()  # servers that could not start: plain processes there
+_servers_lock = threading.Lock()
+
+
+def _server(root: Path, env: dict[str, str], fork: bool | None) -> ForkServer | None:
+    """The fork server for pages run in `root` with `env`, once it is ready; None for a plain process."""
+    if fork is None:
+        setting = os.environ.get(FORK_VARIABLE, "").strip().lower()
+        fork = False if setting in ("0", "no", "false", "off") else True if setting else None
+    if fork is False or not AVAILABLE:
+        return None
+    key = _key(root, env)
+    with _servers_lock:
+        if key in _failed:
+            return None
+        server = _servers.get(key)
+        if server is not None and server.owner != os.getpid():
+            server = None  # this process is a fork of the one that started it
+        if server is None:
+            if not _servers:
+                atexit.register(shutdown)
+            try:
+                server = _servers[key] = ForkServer(server_command, root, env)
+            except OSError as exc:
+                _failed.add(key)
+                print(f"course.snippets: cannot start the fork server ({exc}); pages run in plain processes",
+                      file=sys.stderr)
+                return None
+            if fork is None:
+                return None  # this page does not wait for the server's imports
+    if server.wait_ready(STARTUP_LIMIT):
+        return server
+    _give_up(server, "it stopped or did not get ready in time:\n" + server.output()[-OUTPUT_LIMIT:])
+    return None
+
+
+def _key(root: Path, env: dict[str, str]) -> tuple[Any, ...]:
+    """Pages share a server if they run in the same directory with the same environment."""
+    return (str(root), sys.executable, tuple(sorted((k, v) for k, v in env.items() if k not in VOLATILE)))
+
+
+def _give_up(server: ForkServer, why: str) -> None:
+    """Plain processes from now on where `server` would have forked them."""
+    with _servers_lock:
+        for key, known in list(_servers.items()):
+            if known is server:
+                del _servers[key]
+                _failed.add(key)
+    server.close()
+    print(f"course.snippets: fork server unusable, pages run in plain processes: {why}", file=sys.stderr)
+
+
+def shutdown() -> None:
+    """Stop the fork servers this process started (run at exit too)."""
+    with _servers_lock:
+        servers = list(_servers.values())
+        _servers.clear()
+    for server in servers:
+        server.close()
+
+
 def _watch(
-    proc: subprocess.Popen[bytes],
+    proc: Process,
     read_fd: int,
     blocks: list[Block],
     limit: float,
@@ -187,7 +304,10 @@ def _watch(
         return
     # The pipe closed without "done": the process ended inside a block (or outside any).
     status = proc.wait()
-    how = f"died of {_signal_name(-status)}" if status < 0 else f"exited with status {status}"
+    if status is None:
+        how = "ended (its fork server stopped, so its status is unknown)"
+    else:
+        how = f"died of {_signal_name(-status)}" if status < 0 else f"exited with status {status}"
     where = "while running this block" if running else "outside any block"
     block = blocks[current]
     result.failure = Failure(block, block.line, f"Python process {how} {where}", output=_tail(output, offset))
@@ -210,7 +330,7 @@ def _tail(output: Path, offset: int) -> str:
     return text
 
 
-def _kill_group(proc: subprocess.Popen[bytes]) -> None:
+def _kill_group(proc: Process) -> None:
     """Kill the child and anything it started, then reap it."""
     try:
         os.killpg(proc.pid, signal.SIGKILL)

@@ -67,7 +67,7 @@ def test_crash_is_reported_with_its_block(run_sample):
     assert f'File "{P}segfault.md", line 8' in result.failure.output
 
 
-def test_child_environment(tmp_path):
+def test_child_environment(tmp_path, fork):
     from course.snippets import parse_page, run_page
 
     page_file = tmp_path / "env.md"
@@ -84,5 +84,5 @@ def test_child_environment(tmp_path):
         "assert os.environ['MUJOCO_GL']\n"
         f"assert pathlib.Path.cwd() == pathlib.Path({str(tmp_path.resolve())!r})\n```\n"
     )
-    result = run_page(parse_page(page_file, tmp_path), tmp_path)
+    result = run_page(parse_page(page_file, tmp_path), tmp_path, fork=fork)
     assert result.ok, format_failure(result)
