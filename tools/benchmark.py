@@ -7,7 +7,9 @@ Sections: `models` (load, compile, step rate of each example), `drawings` (each 
 assembly drawing), `pages` (each lesson page in a fresh process, as tests/course/test_pages.py
 runs them), `figures` (each figure made as `make media` makes it, and whether the tests
 would make it again: they do only when the manifest cannot vouch for the committed file),
-`tests` (each test file in a pytest of its own).
+`tests` (each test file in a pytest of its own), `runner` (every lesson page through the
+page runner, its processes plain and then forked from the fork server, side by side with
+`jupyter nbconvert --execute` over the same pages' notebooks; not in the default set).
 
 Figures, not assertions: compare them before and after a change (2-core machines are the
 target). Each line shows CPU seconds as well as wall-clock seconds: on a busy machine the
@@ -15,19 +17,26 @@ wall clock says more about the other processes than about this code. Nothing her
 by the tests.
 """
 
+import json
 import os
 import resource
 import subprocess
 import sys
+import tempfile
 import time
 from pathlib import Path
 
-import sw2sim
+# The course build is found by folder: run as tools/benchmark.py, this file's folder is on
+# sys.path instead of the repository.
+sys.path.insert(1, str(Path(__file__).resolve().parent.parent))
+
+import sw2sim  # noqa: E402
 import mujoco
 from course.drawing import assembly_drawing_svg, part_drawing_svg
 from course.media import all_figures, cores, is_current, read_manifest
 from course.practices import PRACTICES, ROOT, design, package_dir
-from course.snippets import find_pages, parse_page, run_page
+from course.snippets import find_pages, format_failure, parse_page, run_page
+from course.snippets import execute as snippets
 
 DEFAULT = ("models", "drawings", "pages", "figures")
 
@@ -118,8 +127,86 @@ def tests() -> None:
     section.total()
 
 
+def runner() -> None:
+    """The page runner against nbconvert, on the same machine and the same pages.
+
+    (a) every lesson page that has a notebook, one after the other, each in a process of its
+    own as run_page makes it: first plain subprocesses (the runner before the fork server),
+    then with the fork server (started by the first page, which runs plain meanwhile, and
+    stopped at the end: both inside the timing, and its CPU counted once it is reaped);
+    (b) ONE `jupyter nbconvert --to notebook --execute` command over all their notebooks
+    (nbconvert starts a fresh kernel per notebook, in notebooks/, so that the notebooks'
+    first cell finds the repository). A notebook that fails is reported, and it and its
+    page are left out of both sides (nbconvert is then timed again without them).
+    """
+    notebook_dir = ROOT / "notebooks"
+    notebooks = {}  # page -> notebook
+    for path in sorted(notebook_dir.glob("*.ipynb")):
+        page = json.loads(path.read_text(encoding="utf-8"))["metadata"].get("sw2sim", {}).get("page")
+        if page and (ROOT / page).is_file():
+            notebooks[page] = path
+        else:
+            print(f"   {path.relative_to(ROOT)}: no lesson page of its own, left out")
+    jupyter = Path(sys.executable).with_name("jupyter")
+
+    def nbconvert(paths: list[Path]) -> tuple[subprocess.CompletedProcess[str], Path]:
+        out = Path(tempfile.mkdtemp(prefix="benchmark-nbconvert-"))
+        command = [str(jupyter), "nbconvert", "--to", "notebook", "--execute", "--allow-errors",
+                   "--output-dir", str(out), *(p.name for p in paths)]
+        return subprocess.run(command, cwd=notebook_dir, capture_output=True, text=True), out
+
+    def failed_notebooks(done: subprocess.CompletedProcess[str], out: Path, paths: list[Path]) -> dict[Path, str]:
+        failed = {}
+        for path in paths:
+            result = out / path.name
+            if not result.is_file():
+                failed[path] = f"no output (nbconvert exit status {done.returncode}): {done.stderr.strip()[-300:]}"
+                continue
+            cells = json.loads(result.read_text(encoding="utf-8"))["cells"]
+            errors = [o for c in cells if c["cell_type"] == "code" for o in c.get("outputs", ())
+                      if o.get("output_type") == "error"]
+            if errors:
+                failed[path] = f"{errors[0]['ename']}: {errors[0]['evalue']}"[:300]
+        return failed
+
+    section = Section(f"runner vs nbconvert ({len(notebooks)} pages and their notebooks)")
+    paths = list(notebooks.values())
+    done, out = section.timed(f"nbconvert --execute, one command, {len(paths)} notebooks", nbconvert, paths)
+    failed = failed_notebooks(done, out, paths)
+    for path, why in failed.items():
+        print(f"   failed, left out of both sides: {path.relative_to(ROOT)}: {why}")
+    nb_cpu, nb_wall = section.cpu, section.wall
+    if failed:
+        paths = [p for p in paths if p not in failed]
+        notebooks = {page: nb for page, nb in notebooks.items() if nb in paths}
+        section.cpu = section.wall = 0.0
+        done, out = section.timed(f"nbconvert --execute again, {len(paths)} notebooks", nbconvert, paths)
+        nb_cpu, nb_wall = section.cpu, section.wall
+
+    def run_all(fork: bool | None) -> int:
+        failures = 0
+        for page_path in notebooks:
+            result = run_page(parse_page(ROOT / page_path, ROOT), ROOT, fork=fork)
+            if not result.ok:
+                failures += 1
+                print(f"   page failed: {format_failure(result).splitlines()[0]}")
+        if fork is not False:
+            snippets.shutdown()  # reaps the server: its CPU and its pages' reach this process
+        return failures
+
+    measured = {}
+    for label, fork in (("plain subprocesses (before)", False), ("fork server (after)", None)):
+        section.cpu = section.wall = 0.0
+        section.timed(f"runner, {len(notebooks)} pages, {label}", run_all, fork)
+        measured[label] = (section.cpu, section.wall)
+    print()
+    for label, (cpu, wall) in measured.items():
+        print(f"{'nbconvert / runner with ' + label:60} {nb_cpu / cpu:6.1f}x   {nb_wall / wall:6.1f}x  (cpu, wall)")
+    print()
+
+
 SECTIONS = {"models": models, "drawings": drawings, "pages": pages, "figures": figures,
-            "tests": tests}
+            "tests": tests, "runner": runner}
 
 
 def main(argv: list[str]) -> int:

@@ -359,10 +359,10 @@ class _Preloaded:
         random = self.modules.get("numpy.random")
         if random is not None:
             random.seed()  # fresh entropy, as a fresh import has, not the server's state
-        # The stashed modules leave sys.modules, and the attributes of kept packages
-        # (`importlib.metadata`) that a fresh interpreter would not have yet.
         importlib.invalidate_caches()  # drops the finder of '', now another directory
         linecache.clearcache()
+        # The stashed modules leave sys.modules, and the attributes of kept packages
+        # (`importlib.metadata`) that a fresh interpreter would not have yet.
         for name, module in self.modules.items():
             sys.modules.pop(name, None)
             parent, _, child = name.rpartition(".")
