@@ -21,6 +21,13 @@ SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 # Jekyll: do not try to reach the gem index (offline build with Debian's gems).
 export JEKYLL_ENV ?= production
 
+# Compiled Python is kept, in .cache/pycache rather than beside the sources: a test
+# session, the page processes and the figure workers then read the course's and the
+# tests' modules compiled once instead of compiling them on every start (several seconds
+# a session where PYTHONDONTWRITEBYTECODE is set).
+unexport PYTHONDONTWRITEBYTECODE
+export PYTHONPYCACHEPREFIX ?= $(CURDIR)/.cache/pycache
+
 .PHONY: help setup media build site serve test clean distclean
 
 help:
@@ -98,7 +105,7 @@ test: site
 	$(PY) -m pytest -n $(TEST_JOBS) --dist loadscope
 
 clean:
-	rm -rf _site .jekyll-cache .pytest_cache MUJOCO_LOG.TXT assets/vendor
+	rm -rf _site .jekyll-cache .pytest_cache .cache/pycache MUJOCO_LOG.TXT assets/vendor
 
 distclean: clean
 	rm -rf $(VENV) node_modules $(STAMPS)

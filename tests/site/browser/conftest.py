@@ -221,6 +221,9 @@ class BrowserPage:
         """Load `path` (relative to the site), run `then(page)` if given, and wait until
         the page has settled: the load event, web fonts ready and no request in flight."""
         self._settle()
+        # Chromium draws a tab in the background only now and then: a canvas screenshot
+        # there waits seconds for a frame. The tab a test works in is the one in front.
+        self.page.bring_to_front()
         self._visit = visit = Visit(path)
         response = self.page.goto(self.site.url(path), wait_until="load")
         visit.status = response.status if response else None
