@@ -10,6 +10,9 @@ PY      := $(VENV)/bin/python
 STAMPS  := .make
 HOST    ?= 127.0.0.1
 PORT    ?= 4000
+# Jekyll's report of the last `make site`: the tests check it for warnings instead of
+# building the same site again (tests/jekyll.py).
+SITE_LOG := .cache/jekyll-build.log
 
 # Debian packages the site, the renderer, the URDF checks and the site's link checker need.
 APT_PACKAGES := jekyll ruby-jekyll-seo-tag ruby-jekyll-sitemap bundler \
@@ -91,7 +94,10 @@ build: media
 site: setup assets/vendor/.done
 	@BUNDLE_SILENCE_ROOT_WARNING=1 bundle check >/dev/null 2>&1 || \
 	    BUNDLE_SILENCE_ROOT_WARNING=1 bundle install --local --quiet
-	bundle exec jekyll build --quiet
+	@mkdir -p .cache
+	@echo "bundle exec jekyll build  (report: $(SITE_LOG))"
+	@bundle exec jekyll build > $(SITE_LOG) 2>&1 || { cat $(SITE_LOG); exit 1; }
+	@grep -iE '\b(warning|conflict|deprecation|error)\b' $(SITE_LOG) || true
 
 # Serves the _site that `build` just wrote, as it is: no rebuild, no file watching.
 serve: build

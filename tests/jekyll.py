@@ -19,6 +19,15 @@ LOG_PROBLEM = re.compile(r"(?i)\b(warning|conflict|deprecation|error)\b")
 # The site files a tiny test site borrows from the repository.
 SITE_MACHINERY = ["_config.yml", "_layouts", "_includes", "_plugins", "_data"]
 
+# What Jekyll reads to build the site (see _config.yml): newer files mean a stale _site.
+SITE_SOURCES = ["_config.yml", "_pages", "_layouts", "_includes", "_plugins", "_data",
+                "assets", "media", "examples", "notebooks"]
+# Files Jekyll leaves out of the site anyway (_plugins/verbatim_dirs.rb, _config.yml).
+NOT_PUBLISHED = {"__pycache__", "MUJOCO_LOG.TXT"}
+# `make site` builds _site/ and keeps Jekyll's report of that build here.
+MADE_SITE = ROOT / "_site"
+MADE_SITE_LOG = ROOT / ".cache" / "jekyll-build.log"
+
 
 # ---- running Jekyll ------------------------------------------------------------------
 
@@ -69,6 +78,62 @@ def bundle() -> None:
         result = run_bundled(["bundle", "install", "--local", "--quiet"])
         if result.returncode != 0:
             pytest.fail("`bundle install --local` failed; run `make setup`:\n" + build_log(result), pytrace=False)
+
+
+# ---- the site `make site` built ----------------------------------------------------------
+
+
+def source_files():
+    """Every file Jekyll reads to build the site."""
+    for name in SITE_SOURCES:
+        path = ROOT / name
+        if path.is_file():
+            yield path
+        elif path.is_dir():
+            for file in path.rglob("*"):
+                parts = file.relative_to(ROOT).parts
+                hidden = any(p.startswith(".") or p in NOT_PUBLISHED for p in parts)
+                if file.is_file() and not hidden:
+                    yield file
+
+
+def newer_sources(site: Path) -> list[Path]:
+    """The sources changed since `site` was built (all of them when it was not built)."""
+    sitemap = site / "sitemap.xml"
+    if not sitemap.is_file():
+        return list(source_files())
+    built = sitemap.stat().st_mtime
+    return [f for f in source_files() if f.stat().st_mtime > built]
+
+
+def made_site_log() -> str | None:
+    """Jekyll's report of the build `make site` made of _site/, if _site/ is that build and
+    no source has changed since; None otherwise."""
+    sitemap = MADE_SITE / "sitemap.xml"
+    if not (MADE_SITE_LOG.is_file() and sitemap.is_file()):
+        return None
+    log = MADE_SITE_LOG.read_text(encoding="utf-8", errors="replace")
+    # The log is written as the build runs, so it is at least as new as the sitemap.
+    if "done in" not in log or MADE_SITE_LOG.stat().st_mtime < sitemap.stat().st_mtime:
+        return None
+    return None if newer_sources(MADE_SITE) else log
+
+
+@pytest.fixture(scope="module")
+def whole_site(bundle, tmp_path_factory) -> Path:
+    """The whole site, built from this repository with no problem in Jekyll's report:
+    _site/ when `make site` (run by `make test`) has just built it from the sources as
+    they are, else a build of its own."""
+    log = made_site_log()
+    if log is not None:
+        problems = [line for line in log.splitlines() if LOG_PROBLEM.search(line)]
+        if problems:
+            pytest.fail(f"jekyll build of the site ({MADE_SITE_LOG.relative_to(ROOT)}) reported "
+                        "problems:\n" + "\n".join(problems), pytrace=False)
+        return MADE_SITE
+    destination = tmp_path_factory.mktemp("site")
+    assert_clean_build(jekyll_build(ROOT, destination), "the site")
+    return destination
 
 
 def built_page(site: Path, url: str) -> Path:

@@ -20,7 +20,7 @@ import pytest
 import yaml
 from lxml import etree
 from page_text import fenced_blocks, squash, xml_blocks
-from jekyll import between, built_page, bundle, jekyll_build  # noqa: F401  (bundle is a fixture)
+from jekyll import between, built_page, bundle, whole_site  # noqa: F401  (fixtures)
 
 from course.exporter_format import EXPORTER_GREY
 from course.practices import PRACTICES, design
@@ -366,11 +366,8 @@ def test_writing_a_lesson_shows_the_runner_report_it_prints():
 
 
 @pytest.fixture(scope="module")
-def site(bundle, tmp_path_factory) -> Path:  # noqa: F811  (bundle is test_site's fixture)
-    destination = tmp_path_factory.mktemp("reference-site")
-    result = jekyll_build(ROOT, destination)
-    assert result.returncode == 0, result.stdout + result.stderr
-    return destination
+def site(whole_site) -> Path:  # noqa: F811  (whole_site is tests/jekyll.py's fixture)
+    return whole_site
 
 
 def page_body(html_text: str) -> str:

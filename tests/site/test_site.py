@@ -21,17 +21,15 @@ from pathlib import Path
 import pytest
 
 from jekyll import (LOG_PROBLEM, SITE_MACHINERY, assert_clean_build, build_log, need_tool, run_bundled,  # noqa: F401
-                    between, built_page, bundle, jekyll_build)
+                    between, built_page, bundle, jekyll_build, whole_site)
 from repository import ROOT
 
 WORKFLOWS = [ROOT / ".github" / "workflows" / "pages.yml", ROOT / ".github" / "workflows" / "test.yml"]
 
 @pytest.fixture(scope="module")
-def site(bundle, tmp_path_factory) -> Path:
-    """The real site, built once for this module."""
-    destination = tmp_path_factory.mktemp("site")
-    assert_clean_build(jekyll_build(ROOT, destination), "the site")
-    return destination
+def site(whole_site) -> Path:
+    """The real site, built with no problem reported (tests/jekyll.py)."""
+    return whole_site
 
 
 @pytest.fixture(scope="module")

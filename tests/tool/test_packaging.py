@@ -72,6 +72,7 @@ def _providers() -> dict[str, list[str]]:
     return metadata.packages_distributions()
 
 
+@cache
 def distribution_of(module: str) -> str:
     """The installed distribution that provides a top-level module."""
     names = _providers().get(module, [])
@@ -167,56 +168,61 @@ def _closure(requirements: list[str]) -> list[metadata.Distribution]:
     return list(seen.values())
 
 
-def _fresh_venv(root: Path, wheel: Path, requirements: list[str]) -> Path:
-    """A new virtual environment holding the wheel, and linked to exactly the installed
-    files of `requirements` and their own dependencies; its bin/ folder."""
+@pytest.fixture(scope="module")
+def fresh_venv(wheel, tmp_path_factory) -> Path:
+    """A new virtual environment holding the wheel and nothing else; its bin/ folder."""
+    root = tmp_path_factory.mktemp("fresh")
     subprocess.run([sys.executable, "-m", "venv", "--without-pip", str(root / "venv")], check=True)
     python = root / "venv" / "bin" / "python"
     subprocess.run([sys.executable, "-m", "pip", "--python", str(python), "install", "-q",
                     "--disable-pip-version-check", "--no-deps", "--no-index", str(wheel)],
                    check=True, capture_output=True)
-    farm = root / "dependencies"
+    return python.parent
+
+
+def _dependencies(farm: Path, requirements: list[str]) -> Path:
+    """A folder linking to exactly the installed files of `requirements` and their own
+    dependencies, for the fresh environment's path."""
     farm.mkdir()
     for dist in _closure(requirements):
         site = Path(dist.locate_file(""))
         for top in {f.parts[0] for f in dist.files or [] if f.parts and f.parts[0] != ".."}:
             if (site / top).exists() and not (farm / top).exists() and not top.endswith(".pth"):
                 (farm / top).symlink_to(site / top)
-    purelib = subprocess.run([str(python), "-c", "import sysconfig; print(sysconfig.get_path('purelib'))"],
-                             check=True, capture_output=True, text=True).stdout.strip()
-    Path(purelib, "declared-dependencies.pth").write_text(str(farm) + "\n")
-    return python.parent
+    return farm
 
 
-def _sw2sim(bin_dir: Path, cwd: Path, *args: str) -> subprocess.CompletedProcess:
-    # As a new shell would have it: the installed tool chooses its own GL platform.
+def _sw2sim(bin_dir: Path, dependencies: Path, cwd: Path, *args: str) -> subprocess.CompletedProcess:
+    # As a new shell would have it, but for the dependencies: the installed tool chooses its
+    # own GL platform.
     env = {k: v for k, v in os.environ.items()
            if not k.startswith(("PYTHON", "VIRTUAL_ENV")) and k != "MUJOCO_GL"}
     env["PATH"] = f"{bin_dir}{os.pathsep}{env.get('PATH', '')}"
-    return subprocess.run([str(bin_dir / "sw2sim"), *args], cwd=cwd, env=env,
+    env["PYTHONPATH"] = str(dependencies)
+    return subprocess.run([str(bin_dir / args[0]), *args[1:]], cwd=cwd, env=env,
                           capture_output=True, text=True, timeout=300)
 
 
-def test_pip_install_gives_a_working_check_convert_and_render(wheel, tmp_path):
-    bin_dir = _fresh_venv(tmp_path, wheel, PYPROJECT["project"]["dependencies"])
+def test_pip_install_gives_a_working_check_convert_and_render(fresh_venv, tmp_path):
+    dependencies = _dependencies(tmp_path / "dependencies", PYPROJECT["project"]["dependencies"])
     package = EXAMPLES / "example_3"
-    done = _sw2sim(bin_dir, tmp_path, "check", str(package))
+    done = _sw2sim(fresh_venv, dependencies, tmp_path, "sw2sim", "check", str(package))
     assert done.returncode == 0, done.stdout + done.stderr
-    done = _sw2sim(bin_dir, tmp_path, "convert", str(package), "-o", "model")
+    done = _sw2sim(fresh_venv, dependencies, tmp_path, "sw2sim", "convert", str(package), "-o", "model")
     assert done.returncode == 0, done.stdout + done.stderr
     assert (tmp_path / "model" / "scene.xml").is_file()
-    done = _sw2sim(bin_dir, tmp_path, "render", str(package), "-o", "picture.png")
+    done = _sw2sim(fresh_venv, dependencies, tmp_path, "sw2sim", "render", str(package), "-o", "picture.png")
     assert done.returncode == 0, done.stdout + done.stderr
     assert (tmp_path / "picture.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     # Nothing of the course came along.
-    where = subprocess.run([str(bin_dir / "python"), "-c", "import course"], cwd=tmp_path,
-                           capture_output=True, text=True)
+    where = _sw2sim(fresh_venv, dependencies, tmp_path, "python", "-c", "import course")
     assert where.returncode != 0 and "No module named 'course'" in where.stderr
 
 
-def test_the_fresh_install_check_fails_when_a_dependency_is_left_out(wheel, tmp_path):
+def test_the_fresh_install_check_fails_when_a_dependency_is_left_out(fresh_venv, tmp_path):
     # The same check with PyYAML left out: convert reads the controllers' YAML and must fail.
     without = [r for r in PYPROJECT["project"]["dependencies"] if normalise(Requirement(r).name) != "pyyaml"]
-    bin_dir = _fresh_venv(tmp_path, wheel, without)
-    done = _sw2sim(bin_dir, tmp_path, "convert", str(EXAMPLES / "example_3"), "-o", "model")
+    dependencies = _dependencies(tmp_path / "dependencies", without)
+    done = _sw2sim(fresh_venv, dependencies, tmp_path, "sw2sim", "convert", str(EXAMPLES / "example_3"),
+                   "-o", "model")
     assert done.returncode != 0 and "yaml" in (done.stdout + done.stderr)

@@ -41,6 +41,7 @@ from playwright.sync_api import Page, sync_playwright
 
 import axe_audit
 from html_proofer import HtmlProofer
+from jekyll import newer_sources
 from site_server import NODE_MODULES_URL, SiteServer
 
 from repository import ROOT
@@ -48,12 +49,6 @@ from repository import ROOT
 SITE = Path(os.environ.get("SW2SIM_SITE") or ROOT / "_site")
 NODE_MODULES = ROOT / "node_modules"
 SITEMAP_NS = {"s": "http://www.sitemaps.org/schemas/sitemap/0.9"}
-
-# What Jekyll reads to build the site (see _config.yml): newer files mean a stale _site.
-SITE_SOURCES = ["_config.yml", "_pages", "_layouts", "_includes", "_plugins", "_data",
-                "assets", "media", "examples", "notebooks"]
-# Files Jekyll leaves out of the site anyway (_plugins/verbatim_dirs.rb, _config.yml).
-NOT_PUBLISHED = {"__pycache__", "MUJOCO_LOG.TXT"}
 
 CHROMIUM_ARGS = [
     "--headless", "--no-sandbox", "--disable-gpu", "--disable-background-networking",
@@ -74,27 +69,13 @@ IMAGES_JS = """() => Array.from(document.images, img => ({
 # ---- the built site -------------------------------------------------------------------
 
 
-def _source_files():
-    for name in SITE_SOURCES:
-        path = ROOT / name
-        if path.is_file():
-            yield path
-        elif path.is_dir():
-            for file in path.rglob("*"):
-                parts = file.relative_to(ROOT).parts
-                hidden = any(p.startswith(".") or p in NOT_PUBLISHED for p in parts)
-                if file.is_file() and not hidden:
-                    yield file
-
-
 def built_site() -> Path:
     """_site, or a test failure that says how to make it (missing, or older than a source)."""
     sitemap = SITE / "sitemap.xml"
     if not sitemap.is_file():
         pytest.fail("_site/ has no sitemap.xml: build the site first with `make site` "
                     "(`make test` does it).", pytrace=False)
-    built = sitemap.stat().st_mtime
-    newer = [f for f in _source_files() if f.stat().st_mtime > built]
+    newer = newer_sources(SITE)
     if newer:
         names = ", ".join(str(f.relative_to(ROOT)) for f in newer[:5])
         more = f" and {len(newer) - 5} more" if len(newer) > 5 else ""
