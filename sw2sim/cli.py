@@ -13,6 +13,8 @@ import os
 import sys
 from pathlib import Path
 
+from . import gl
+
 EXIT_OK, EXIT_ERRORS, EXIT_UNUSABLE = 0, 1, 2
 
 DESCRIPTION = """\
@@ -324,7 +326,7 @@ def _view(args) -> int:
         return EXIT_UNUSABLE
     # The viewer draws through GLFW; `import sw2sim` chose an off-screen platform for
     # pictures, and MuJoCo reads the choice once, when it is first imported.
-    os.environ["MUJOCO_GL"] = "glfw"
+    gl.for_window()
     if not _glfw_starts():
         _say(f"sw2sim view: no window can open on display {_display_name()}. Check that "
              "the display works (`xeyes`, say), or make a picture instead:\n"

@@ -8,6 +8,9 @@ makes the choice before anything imports MuJoCo:
   library is installed (Debian and Ubuntu: `libosmesa6`), EGL otherwise;
 - Linux with a display, Windows and macOS: left unset, so MuJoCo uses its own default,
   the window system's OpenGL (`MUJOCO_GL=egl` would stop MuJoCo from starting there).
+
+`sw2sim view` draws in a window, so it asks for GLFW (`for_window`) before it imports
+MuJoCo, whatever was chosen for pictures.
 """
 
 from __future__ import annotations
@@ -36,3 +39,11 @@ def choose(environ: MutableMapping[str, str] | None = None) -> str | None:
     if chosen is not None:
         environ["MUJOCO_GL"] = chosen
     return chosen
+
+
+def for_window(environ: MutableMapping[str, str] | None = None) -> str:
+    """Set `MUJOCO_GL=glfw`, for MuJoCo's viewer window. Call it before `mujoco` is first
+    imported: MuJoCo reads the variable once."""
+    environ = os.environ if environ is None else environ
+    environ["MUJOCO_GL"] = "glfw"
+    return "glfw"

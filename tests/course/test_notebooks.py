@@ -215,18 +215,6 @@ def test_an_include_code_in_a_list_is_indented_as_the_site_shows_it(tmp_path):
     assert "{:" not in rest
 
 
-def test_the_course_build_imports_no_private_name_from_another_module():
-    import ast
-
-    crossing = []
-    for file in sorted((ROOT / "course").rglob("*.py")):
-        for node in ast.walk(ast.parse(file.read_text(encoding="utf-8"))):
-            if isinstance(node, ast.ImportFrom) and (node.level or (node.module or "").startswith("course")):
-                crossing += [f"{file.relative_to(ROOT)}: {node.module}.{a.name}" for a in node.names
-                             if a.name.startswith("_") and not a.name.endswith("__")]
-    assert not crossing
-
-
 def test_check_with_nothing_chosen_finds_nothing_stale(capsys):
     assert notebooks.main(["--check", "no page has this in its path"]) == 0
     assert capsys.readouterr().out == ""
