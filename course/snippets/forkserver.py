@@ -28,10 +28,10 @@ Protocol (AF_UNIX SOCK_SEQPACKET sockets, one message per send):
 The server kills the page processes it still has and exits when the control socket closes.
 
 Stdlib only: the server process loads this file with runpy (it must not import the course
-package), and the runner imports it for `ForkServer`. That is also why it is over 500
-lines: the server, the page process's fresh-interpreter stash and the runner's client are
-one file, since a file loaded by path cannot import siblings without putting the course
-build on the page's sys.path.
+package), and the runner imports it for `ForkServer`. That is also why it is
+over 500 lines: the server, the page process's fresh-interpreter stash and the runner's
+client are one file, since a file loaded by path cannot import siblings without putting
+the course build on the page's sys.path.
 """
 
 from __future__ import annotations
