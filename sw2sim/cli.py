@@ -213,12 +213,16 @@ def _convert(args) -> int:
         return EXIT_UNUSABLE
     checked = check_package(args.path)
     report = checked.report
-    if report.status != EXIT_OK:
+    if report.status == EXIT_UNUSABLE or report.simulation_stoppers:
         print(report.format())
         _say("sw2sim convert: not converted; fix the errors above and run it again.")
         return report.status
     if report.findings:
         print(report.format())
+    packaging = sum(f.severity == "error" for f in report.findings)
+    if packaging:
+        print(f"{packaging} error(s) above matter only to ROS's build and package tools; "
+              "MuJoCo does not read package.xml, so the model is converted anyway.")
     from .check.stability import mujoco_warnings
     from .convert import OutputNotEmpty, convert
     from .package import LoadError

@@ -7,7 +7,7 @@
 Each rule module (structure, package_xml, meshes, inertia, joints, collisions, stability)
 registers its rules and has one check function; they run in order on one shared Context.
 The stability run comes last, and only when nothing so far stops MuJoCo from compiling
-the model. Rule modules build on findings, context, urdf (reading values) and geometry
+the model (problems that matter only to ROS packaging do not). Rule modules build on findings, context, urdf (reading values) and geometry
 (shapes, masses, the link tree) and on the tool's modules outside check/, never on each
 other (tests/tool/test_structure_of_the_tool.py).
 """
@@ -15,10 +15,12 @@ other (tests/tool/test_structure_of_the_tool.py).
 from __future__ import annotations
 
 from .context import Context, open_package
-from .findings import ERROR, FATAL, GROUPS, RULES, WARNING, Finding, Report, Rule
+from .findings import (ADVICE, BLOCKS, ERROR, FATAL, GROUPS, PACKAGING, RULES, SIMULATION, WARNING,
+                       Finding, Report, Rule)
 
 __all__ = ["check", "check_package", "open_package", "all_rules", "Context", "Finding",
-           "Report", "Rule", "RULES", "GROUPS", "FATAL", "ERROR", "WARNING"]
+           "Report", "Rule", "RULES", "GROUPS", "FATAL", "ERROR", "WARNING", "BLOCKS",
+           "SIMULATION", "PACKAGING", "ADVICE"]
 
 
 def _checks():
@@ -40,7 +42,8 @@ def check_package(source, *, stability: bool = True) -> Context:
     if ctx.usable:
         for run in _checks():
             run(ctx)
-        if stability and not any(f.severity in (FATAL, ERROR) for f in ctx.findings):
+        # Problems of ROS packaging alone do not keep MuJoCo from running the model.
+        if stability and not ctx.report.simulation_stoppers:
             from . import stability as stability_run
             ctx.report.stability = stability_run.check(ctx)
     return ctx

@@ -86,7 +86,7 @@ class Context:
             line = element.sourceline
         finding = Finding(rule=rule_id, severity=known.severity, message=message,
                           fix=fix or known.fix, file=None if file is None else display(file),
-                          line=line)
+                          line=line, blocks=known.blocks)
         self.findings.append(finding)
         return finding
 

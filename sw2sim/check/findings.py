@@ -15,6 +15,16 @@ from dataclasses import asdict, dataclass, field
 FATAL, ERROR, WARNING = "fatal", "error", "warning"
 SEVERITIES = (FATAL, ERROR, WARNING)
 
+# What a problem stands in the way of:
+# - "simulation": the model is wrong or will not load; `convert` refuses the package;
+# - "packaging": only ROS's build and package tools care (package.xml, package and folder
+#   names); MuJoCo never reads them, so the package converts and the report lists them;
+# - "advice": the model loads and runs; worth a look.
+SIMULATION, PACKAGING, ADVICE = "simulation", "packaging", "advice"
+BLOCKS = (SIMULATION, PACKAGING, ADVICE)
+BLOCKS_SAYS = {SIMULATION: "stops the simulation", PACKAGING: "ROS packaging only",
+               ADVICE: "advice"}
+
 # Groups, in the order the troubleshooting page lists them.
 GROUPS = {
     "input": "The file itself",
@@ -38,21 +48,32 @@ class Rule:
     cause: str       # why it happens
     fix: str         # what to do, in SolidWorks or in the files
     seen_in: tuple[str, ...] = ()  # public reports, e.g. "solidworks_urdf_exporter#88"
+    blocks: str = SIMULATION       # one of BLOCKS
 
 
 RULES: dict[str, Rule] = {}
 
 
 def rule(id: str, severity: str, group: str, title: str, *, symptom: str, cause: str,
-         fix: str, seen_in: tuple[str, ...] = ()) -> Rule:
-    """Register a rule (at import time of the module that checks it) and return it."""
+         fix: str, seen_in: tuple[str, ...] = (), blocks: str | None = None) -> Rule:
+    """Register a rule (at import time of the module that checks it) and return it.
+
+    What it blocks defaults to: "packaging" for the package group, "advice" for a
+    warning, "simulation" for an error or a fatal problem.
+    """
     if id in RULES:
         raise ValueError(f"rule {id!r} registered twice")
     if severity not in SEVERITIES:
         raise ValueError(f"rule {id!r}: severity must be one of {SEVERITIES}")
     if group not in GROUPS:
         raise ValueError(f"rule {id!r}: group must be one of {tuple(GROUPS)}")
-    RULES[id] = Rule(id, severity, group, title, symptom, cause, fix, tuple(seen_in))
+    if blocks is None:
+        blocks = PACKAGING if group == "package" else ADVICE if severity == WARNING else SIMULATION
+    if blocks not in BLOCKS:
+        raise ValueError(f"rule {id!r}: blocks must be one of {BLOCKS}")
+    if blocks == PACKAGING and severity == FATAL:
+        raise ValueError(f"rule {id!r}: a problem of packaging alone cannot be fatal")
+    RULES[id] = Rule(id, severity, group, title, symptom, cause, fix, tuple(seen_in), blocks)
     return RULES[id]
 
 
@@ -64,6 +85,7 @@ class Finding:
     fix: str                   # how to fix it here (defaults to the rule's fix)
     file: str | None = None
     line: int | None = None
+    blocks: str = SIMULATION   # the rule's: what the problem stands in the way of
 
     @property
     def where(self) -> str:
@@ -71,8 +93,14 @@ class Finding:
             return "-"
         return f"{self.file}:{self.line}" if self.line else self.file
 
+    @property
+    def stops_simulation(self) -> bool:
+        return self.blocks == SIMULATION and self.severity in (FATAL, ERROR)
+
     def format(self) -> str:
-        return f"{self.where}: {self.severity} [{self.rule}] {self.message}. Fix: {self.fix}"
+        kind = self.severity if self.blocks == SIMULATION or self.severity == WARNING \
+            else f"{self.severity} ({BLOCKS_SAYS[self.blocks]})"
+        return f"{self.where}: {kind} [{self.rule}] {self.message}. Fix: {self.fix}"
 
 
 @dataclass
@@ -90,6 +118,12 @@ class Report:
         if FATAL in severities:
             return 2
         return 1 if ERROR in severities else 0
+
+    @property
+    def simulation_stoppers(self) -> list[Finding]:
+        """The findings that stop a conversion: errors that make the model wrong or
+        unloadable (problems of ROS packaging alone do not)."""
+        return [f for f in self.findings if f.stops_simulation]
 
     def count(self, severity: str) -> int:
         return sum(f.severity == severity for f in self.findings)

@@ -13,7 +13,7 @@ from __future__ import annotations
 import re
 
 from ..xmlsafe import source_line
-from .findings import ERROR, WARNING, rule
+from .findings import ERROR, SIMULATION, WARNING, rule
 from .urdf import owner
 
 # catkin's rules for package names (catkin_pkg, REP 144): a name outside LENIENT_NAME is
@@ -78,7 +78,7 @@ rule("package-name-mismatch", ERROR, "package", "The mesh paths name a different
            "package://<name>/meshes/... paths in the URDF name a package that is not there.",
      fix="Make the names agree: change <name> in package.xml, or replace the package:// "
          "prefix in every mesh path of the URDF.",
-     seen_in=("mujoco#273", "mujoco#1432", "mujoco#1569"))
+     seen_in=("mujoco#273", "mujoco#1432", "mujoco#1569"), blocks=SIMULATION)
 rule("package-folder-name", WARNING, "package", "The folder's name differs from the "
      "package's name",
      symptom="ROS still finds the package by the name in package.xml, but tools outside ROS "

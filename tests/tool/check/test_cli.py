@@ -19,7 +19,7 @@ from test_stability import negative_damping
 
 from repository import ROOT
 EXAMPLE_4 = str(ROOT / "examples" / "example_4")
-FINDING = re.compile(r"^\S+: (fatal|error|warning) \[[a-z0-9-]+\] .+\. Fix: .+$")
+FINDING = re.compile(r"^\S+: (fatal|error|warning)( \([a-zA-Z ']+\))? \[[a-z0-9-]+\] .+\. Fix: .+$")
 COMMANDS = ["check", "convert", "view", "render"]
 
 
