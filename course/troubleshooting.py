@@ -15,6 +15,7 @@ import sys
 from pathlib import Path
 
 from sw2sim.check import GROUPS, all_rules
+from sw2sim.check.findings import BLOCKS_SAYS
 
 from . import ROOT
 
@@ -47,7 +48,8 @@ def rules_data() -> dict:
     """The registry as plain data: groups in page order, each with its rules."""
     groups = []
     for group, title in GROUPS.items():
-        entries = [{"id": r.id, "severity": r.severity, "title": _html(r.title),
+        entries = [{"id": r.id, "severity": r.severity, "blocks": r.blocks,
+                    "blocks_says": BLOCKS_SAYS[r.blocks], "title": _html(r.title),
                     "symptom": _html(r.symptom), "cause": _html(r.cause), "fix": _html(r.fix),
                     "seen_in": [_link(s) for s in r.seen_in]}
                    for r in all_rules().values() if r.group == group]

@@ -405,6 +405,7 @@ def test_troubleshooting_data_is_the_rule_registry():
 
 def test_troubleshooting_page_has_an_entry_per_rule(site):
     from sw2sim.check import all_rules
+    from sw2sim.check.findings import BLOCKS_SAYS
     text = built_page(site, "/reference/troubleshooting/").read_text()
     for rule in all_rules().values():
         entry = between(text, f'<h3 id="{rule.id}">', "</section>")
@@ -414,3 +415,9 @@ def test_troubleshooting_page_has_an_entry_per_rule(site):
         heading = entry[:entry.index("</h3>")]
         shown = html.unescape(re.sub(r"<[^>]+>", "", heading))
         assert shown == f"{rule.id} {rule.title.replace('`', '')}", shown
+        # What it stands in the way of, in the words the checker's output uses.
+        kind = re.search(r'<p class="rule-severity[^"]*">([^<]+)</p>', entry).group(1)
+        said = BLOCKS_SAYS[rule.blocks]
+        expected = rule.severity if (rule.severity, rule.blocks) == ("warning", "advice") \
+            else f"{rule.severity}: {said}"
+        assert kind == expected, (rule.id, kind)
