@@ -90,11 +90,12 @@ def _gain(pid, key: str) -> float | None:
 
 
 def add_actuators(spec: mujoco.MjSpec, source: str | os.PathLike | Package, *,
-                  sliders: bool = False) -> tuple[list[Actuator], list[str]]:
+                  sliders: bool = False, leave=frozenset()) -> tuple[list[Actuator], list[str]]:
     """Add actuators to `spec` for the package at `source` (a path or a Package).
 
     Returns the actuators in `data.ctrl` order, and a sentence for each controller or
-    transmission that was left out, and why. Raises LoadError when the URDF's limits,
+    transmission that was left out, and why; the joints in `leave` get none (a repair
+    left them unactuated). Raises LoadError when the URDF's limits,
     the transmissions or the YAML cannot be read.
     """
     package = as_package(source)
@@ -145,6 +146,10 @@ def add_actuators(spec: mujoco.MjSpec, source: str | os.PathLike | Package, *,
         where = file.relative_to(root).as_posix()
         pid = settings.get("pid")
         p, i, d = _gain(pid, "p"), _gain(pid, "i"), _gain(pid, "d")
+        if joint in leave:
+            skipped.append(f"{name} in {where}: joint {joint!r} is left without an actuator "
+                           "(its limits are the exporter's empty ones; see Repairs)")
+            continue
         if joint not in joints:
             skipped.append(f"{name} in {where}: the model has no hinge or slide joint {joint!r}")
             continue
@@ -186,7 +191,7 @@ def add_actuators(spec: mujoco.MjSpec, source: str | os.PathLike | Package, *,
 
     if sliders:
         for joint, j in joints.items():
-            if joint in driven:
+            if joint in driven or joint in leave:
                 continue
             m = max(inertia[j], 1e-9)
             if joint_range(joint) is not None:

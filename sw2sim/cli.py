@@ -64,13 +64,22 @@ Writes a folder in the layout of the MuJoCo Menagerie's models:
   README.md   what came from where, and what was changed or dropped
 The result needs plain MuJoCo only: python -m mujoco.viewer --mjcf=DIR/scene.xml
 
-The package is checked first (as `sw2sim check`); with errors nothing is written
-and the exit status is 1. An existing non-empty DIR is refused unless --force is
-given; --force replaces only the files convert writes and deletes nothing.
+The package is checked first (as `sw2sim check`). Problems with exactly one right
+answer are repaired in the written model, never in your package, and listed in
+README.md under Repairs with the lasting fix: a mesh path that differs from its
+file in capitals or slashes, the exporter's empty (all-zero) joint limits, an
+effort of 0, an inertia that breaks A + B >= C by rounding. Problems that only
+ROS's build tools care about (package.xml) are reported and do not stop it. Any
+other error stops it: nothing is written, and the exit status is 1.
+
+An existing non-empty DIR is refused unless --force is given; --force replaces
+only the files convert writes and deletes nothing.
 
 examples:
   sw2sim convert examples/example_5 -o example_5_mujoco
   sw2sim convert my_robot -o my_robot_mujoco --force
+  sw2sim convert my_robot -o my_robot_mujoco --strict        # repair nothing
+  sw2sim convert my_robot -o my_robot_mujoco --density 2700  # masses from the meshes
 """
 
 VIEW_HELP = """\
@@ -144,6 +153,16 @@ def _parser() -> argparse.ArgumentParser:
                          help="the folder to write (created if missing)")
     convert.add_argument("--force", action="store_true",
                          help="write into a non-empty DIR, replacing only convert's own files")
+    convert.add_argument("--strict", action="store_true",
+                         help="repair nothing: refuse the package on any error that affects the "
+                              "simulation")
+    convert.add_argument("--lock-default-limits", action="store_true",
+                         help="lock joints whose limits are the exporter's empty ones (all 0) "
+                              "instead of letting them move freely")
+    convert.add_argument("--density", type=_density, metavar="KG_PER_M3",
+                         help="recompute zero or implausible masses and inertias from the "
+                              "meshes, as solids of this density (aluminium 2700, steel 7850, "
+                              "ABS 1050)")
     convert.set_defaults(command="convert", run=_convert)
 
     view = commands.add_parser("view", help="open the package in MuJoCo's viewer",
@@ -187,6 +206,17 @@ def _pixels(text: str) -> int:
     return value
 
 
+def _density(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a number of kg/m^3") from None
+    if not 1 <= value <= 25_000:
+        raise argparse.ArgumentTypeError(f"{value:g} kg/m^3 is outside 1 to 25,000; write the "
+                                         "density in kg/m^3 (aluminium: 2700)")
+    return value
+
+
 def _say(message: str) -> None:
     print(message, file=sys.stderr)
 
@@ -201,7 +231,7 @@ def _check(args) -> int:
 
 # -- convert ---------------------------------------------------------------------------
 def _convert(args) -> int:
-    from .check import check_package
+    from .check import PACKAGING, Options, check_package
     out = Path(args.output)
     if out.exists() and not out.is_dir():
         _say(f"sw2sim convert: {out} is a file; give a folder to write the model into.")
@@ -211,24 +241,34 @@ def _convert(args) -> int:
              "folder, or add --force to replace the files convert writes there (other files "
              "are left alone).")
         return EXIT_UNUSABLE
-    checked = check_package(args.path)
+    options = Options(strict=args.strict, lock_default_limits=args.lock_default_limits,
+                      density=args.density)
+    checked = check_package(args.path, options=options)
     report = checked.report
     if report.status == EXIT_UNUSABLE or report.simulation_stoppers:
         print(report.format())
-        _say("sw2sim convert: not converted; fix the errors above and run it again.")
+        _say("sw2sim convert: not converted; fix the errors above and run it again." + (
+            "" if args.strict or not report.repaired else
+            " (The problems marked \"Convert repairs it\" need nothing more.)"))
         return report.status
     if report.findings:
         print(report.format())
-    packaging = sum(f.severity == "error" for f in report.findings)
+    packaging = sum(f.severity == "error" and f.blocks == PACKAGING for f in report.findings)
     if packaging:
         print(f"{packaging} error(s) above matter only to ROS's build and package tools; "
               "MuJoCo does not read package.xml, so the model is converted anyway.")
+    if report.repaired:
+        print(f"{len(report.repaired)} problem(s) above are repaired in the written model "
+              "(your package is unchanged); README.md lists them under Repairs, with the "
+              "lasting fix for each.")
     from .check.stability import mujoco_warnings
     from .convert import OutputNotEmpty, convert
     from .package import LoadError
     try:
         with mujoco_warnings():   # the check has reported them; no MUJOCO_LOG.TXT here
-            result = convert(checked.package, out, force=args.force)
+            result = convert(checked.repaired_package(), out, force=args.force,
+                             repairs=report.repaired,
+                             unactuated=[r.unactuated for r in checked.repairs if r.unactuated])
     except LoadError as exc:
         _say(f"sw2sim convert: {exc}")
         return EXIT_ERRORS

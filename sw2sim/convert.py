@@ -50,6 +50,7 @@ class Conversion:
     skipped: list[str] = field(default_factory=list)
     meshes: dict[str, str] = field(default_factory=dict)   # asset path -> package path
     excluded: list[tuple[str, str]] = field(default_factory=list)
+    repairs: list = field(default_factory=list)    # the findings convert repaired
 
 
 def file_stem(name: str) -> str:
@@ -59,12 +60,14 @@ def file_stem(name: str) -> str:
 
 
 def convert(source: str | os.PathLike | Package, folder: str | os.PathLike, *,
-            force: bool = False) -> Conversion:
+            force: bool = False, repairs=(), unactuated=()) -> Conversion:
     """Write the model folder for the package at `source` (a path or a Package) into `folder`.
 
     Raises LoadError when the package cannot be loaded, OutputNotEmpty when `folder`
     holds files and `force` is false, and OSError when it cannot be written. With
     `force`, only the files this conversion writes are replaced; nothing is deleted.
+    `repairs` are the check's findings whose repairs `source` (a repaired Package) carries,
+    for the README; `unactuated` names joints that get no actuator whatever drives them.
     """
     folder = Path(folder)
     if folder.exists() and not folder.is_dir():
@@ -75,7 +78,7 @@ def convert(source: str | os.PathLike | Package, folder: str | os.PathLike, *,
     package = as_package(source)
     fixed = package.world_fixed
     spec = load_package(package, fixed_base=fixed, scene=False)
-    actuators, skipped = add_actuators(spec, package)
+    actuators, skipped = add_actuators(spec, package, leave=set(unactuated))
     try:
         model = spec.compile()
     except ValueError as exc:
@@ -85,7 +88,8 @@ def convert(source: str | os.PathLike | Package, folder: str | os.PathLike, *,
     result = Conversion(name=file_stem(spec.modelname), folder=folder, fixed=fixed,
                         floor_z=_floor_height(model, data) if fixed else 0.0,
                         actuators=actuators, skipped=skipped,
-                        excluded=[(e.bodyname1, e.bodyname2) for e in spec.excludes])
+                        excluded=[(e.bodyname1, e.bodyname2) for e in spec.excludes],
+                        repairs=list(repairs))
 
     copies: dict[Path, str] = {}
     for mesh in spec.meshes:
@@ -200,7 +204,8 @@ def readme(result: Conversion, package: Package) -> str:
            f"- **Links and joints** from `{urdf}`: {len(links)} link(s) became bodies, "
            f"{len(joints)} joint(s) became joints (" +
            ", ".join(f"`{j}` {t}" for j, t in joints) + "). Masses, centres of mass and "
-           "inertias are the URDF's `<inertial>` values, unchanged.",
+           "inertias are the URDF's `<inertial>` values, " +
+           ("unchanged but where Repairs says." if result.repairs else "unchanged."),
            "- **Base**: " + (
                "fixed, because the URDF fixes its root to a link named `world` (as Gazebo "
                "needs); MuJoCo's world body stands for that link." if result.fixed else
@@ -236,6 +241,7 @@ def readme(result: Conversion, package: Package) -> str:
             "`JointVelocityController` became a velocity actuator in the same way (kv = p). "
             "A transmission without a controller became a motor, whose control is the effort "
             "itself, geared by the transmission's mechanical reduction.", ""]
+    out += _repairs_section(result, package)
     out += ["## What changed on the way", ""]
     changes = []
     dropped = [f"`{a.name}`: {', '.join(a.dropped)}" for a in result.actuators if a.dropped]
@@ -262,11 +268,45 @@ def readme(result: Conversion, package: Package) -> str:
     if gazebo:
         changes.append(f"The {gazebo} `<gazebo>` element(s) (Gazebo plugins and settings) were "
                        "left out.")
+    mimics = [(j.get("name"), m.get("joint")) for j in robot.findall("joint")
+              for m in j.findall("mimic")]
+    if mimics:
+        changes.append("Each `<mimic>` became an equality constraint that holds the joint at "
+                       "the followed joint's position times the multiplier, plus the offset: " +
+                       ", ".join(f"`{a}` follows `{b}`" for a, b in mimics) + ".")
     changes += [f"Not converted: {s}." for s in result.skipped]
     changes.append("The integrator is `implicitfast`, which keeps stiff joint damping stable; "
                    "the time step is MuJoCo's default, 2 ms.")
     out += [f"- {c}" for c in changes] + [""]
     return "\n".join(out)
+
+
+def _repairs_section(result: Conversion, package: Package) -> list[str]:
+    """README lines: each repair made, where, what was assumed, and the lasting fix."""
+    if not result.repairs:
+        return []
+    out = ["## Repairs", "",
+           "`sw2sim convert` repaired these problems in the model it wrote. Your package "
+           "is unchanged: make each fix in SolidWorks (or in the files) so that ROS and "
+           "Gazebo get it too, and run `sw2sim check` again. `sw2sim convert --strict` "
+           "repairs nothing and refuses the package instead.", ""]
+    for finding in result.repairs:
+        where = _in_package(finding.file, package.root)
+        where = f"{where}:{finding.line}" if finding.line else where
+        out += [f"- **`{where}`** [{finding.rule}] {finding.message}.",
+                f"  - Repaired: {finding.repair}.",
+                f"  - To fix it for good: {finding.fix.rstrip('.')}."]
+    return out + [""]
+
+
+def _in_package(file: str | None, root: Path) -> str:
+    """A finding's file as a path inside the package, where it is one."""
+    if file is None:
+        return "-"
+    try:
+        return Path(file).resolve().relative_to(root).as_posix()
+    except ValueError:
+        return file
 
 
 def _floor_height(model, data) -> float:

@@ -15,12 +15,13 @@ other (tests/tool/test_structure_of_the_tool.py).
 from __future__ import annotations
 
 from .context import Context, open_package
+from .repairs import Options
 from .findings import (ADVICE, BLOCKS, ERROR, FATAL, GROUPS, PACKAGING, RULES, SIMULATION, WARNING,
                        Finding, Report, Rule)
 
 __all__ = ["check", "check_package", "open_package", "all_rules", "Context", "Finding",
            "Report", "Rule", "RULES", "GROUPS", "FATAL", "ERROR", "WARNING", "BLOCKS",
-           "SIMULATION", "PACKAGING", "ADVICE"]
+           "SIMULATION", "PACKAGING", "ADVICE", "Options"]
 
 
 def _checks():
@@ -30,19 +31,21 @@ def _checks():
             collisions.check]
 
 
-def check(source, *, stability: bool = True) -> Report:
+def check(source, *, stability: bool = True, options: Options = Options()) -> Report:
     """Check a package folder, a .urdf file or a Package; never raises on bad input."""
-    return check_package(source, stability=stability).report
+    return check_package(source, stability=stability, options=options).report
 
 
-def check_package(source, *, stability: bool = True) -> Context:
-    """Check as `check` does, and return the Context: its `report`, and its `package` as
-    read (None when it could not be read), for a command that goes on to use it."""
-    ctx = open_package(source)
+def check_package(source, *, stability: bool = True, options: Options = Options()) -> Context:
+    """Check as `check` does, and return the Context: its `report`, its `package` as read
+    (None when it could not be read) and `repaired_package()`, for a command that goes on
+    to use it. `options` are the repairs' (`sw2sim convert`'s flags)."""
+    ctx = open_package(source, options)
     if ctx.usable:
         for run in _checks():
             run(ctx)
-        # Problems of ROS packaging alone do not keep MuJoCo from running the model.
+        # Problems of ROS packaging alone do not keep MuJoCo from running the model, and
+        # the run simulates the model as convert writes it, repairs made.
         if stability and not ctx.report.simulation_stoppers:
             from . import stability as stability_run
             ctx.report.stability = stability_run.check(ctx)

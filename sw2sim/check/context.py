@@ -15,8 +15,10 @@ from pathlib import Path
 
 from lxml import etree
 
+from ..mesh_paths import package_files
 from ..package import LoadError, Package, find_package
 from .findings import FATAL, RULES, Finding, Report, rule
+from .repairs import DEFAULT, Options, Repair, repaired
 
 rule("input-missing", FATAL, "input", "The path does not exist, or holds no URDF",
      symptom="`sw2sim check` stops at once and names the path.",
@@ -57,7 +59,9 @@ class Context:
     Package, it checks that one (read elsewhere, e.g. by the command that converts it).
     """
 
-    def __init__(self, source: str | os.PathLike | Package):
+    def __init__(self, source: str | os.PathLike | Package, options: Options = DEFAULT):
+        self.options = options
+        self.repairs: list[Repair] = []
         self.package: Package | None = None
         self.robot: etree._Element | None = None
         if isinstance(source, Package):
@@ -66,6 +70,7 @@ class Context:
         self.path = Path(source)
         self.report = Report(path=str(source))
         self._meshes: dict[Path, object] = {}
+        self._files: list[Path] | None = None
 
     # -- reporting -------------------------------------------------------------------
     @property
@@ -77,18 +82,30 @@ class Context:
         return self.robot is not None and not any(f.severity == FATAL for f in self.findings)
 
     def add(self, rule_id: str, message: str, *, element=None, line: int | None = None,
-            file: str | os.PathLike | None = None, fix: str | None = None) -> Finding:
-        """Record one finding of a registered rule; the file defaults to the URDF."""
+            file: str | os.PathLike | None = None, fix: str | None = None,
+            repair: Repair | None = None) -> Finding:
+        """Record one finding of a registered rule; the file defaults to the URDF.
+
+        `repair` is what convert does about this finding; it is dropped in strict mode."""
         known = RULES[rule_id]
+        if self.options.strict:
+            repair = None
+        elif repair is not None:
+            self.repairs.append(repair)
         if file is None and self.package is not None:
             file = self.package.urdf
         if line is None and element is not None:
             line = element.sourceline
         finding = Finding(rule=rule_id, severity=known.severity, message=message,
                           fix=fix or known.fix, file=None if file is None else display(file),
-                          line=line, blocks=known.blocks)
+                          line=line, blocks=known.blocks,
+                          repair=None if repair is None else repair.says)
         self.findings.append(finding)
         return finding
+
+    def repaired_package(self) -> Package | None:
+        """The package as convert simulates it: with every repair made, in a copy."""
+        return None if self.package is None else repaired(self.package, self.repairs)
 
     # -- the URDF --------------------------------------------------------------------
     @property
@@ -100,6 +117,12 @@ class Context:
     def joints(self) -> dict[str, etree._Element]:
         """Joints by name (the first, where a name repeats)."""
         return self.package.joints
+
+    def package_files(self) -> list[Path]:
+        """The package's files, relative to its folder (read once; see sw2sim.mesh_paths)."""
+        if self._files is None:
+            self._files = package_files(self.package.root) if self.package else []
+        return self._files
 
     def mesh_file(self, mesh: etree._Element) -> Path | None:
         """The file a <mesh filename=...> names, if it resolves to a file inside the package."""
@@ -166,10 +189,10 @@ def _real(folder: str) -> Path:
     return Path(folder).resolve()
 
 
-def open_package(source: str | os.PathLike | Package) -> Context:
+def open_package(source: str | os.PathLike | Package, options: Options = DEFAULT) -> Context:
     """A Context for the package at `source` (read here unless it is a Package already);
     input problems become fatal findings."""
-    ctx = Context(source)
+    ctx = Context(source, options)
     if ctx.package is not None:
         return ctx
     given = Path(source)

@@ -49,17 +49,21 @@ class Rule:
     fix: str         # what to do, in SolidWorks or in the files
     seen_in: tuple[str, ...] = ()  # public reports, e.g. "solidworks_urdf_exporter#88"
     blocks: str = SIMULATION       # one of BLOCKS
+    repair: str | None = None      # what `convert` does about it, when it has one right answer
 
 
 RULES: dict[str, Rule] = {}
 
 
 def rule(id: str, severity: str, group: str, title: str, *, symptom: str, cause: str,
-         fix: str, seen_in: tuple[str, ...] = (), blocks: str | None = None) -> Rule:
+         fix: str, seen_in: tuple[str, ...] = (), blocks: str | None = None,
+         repair: str | None = None) -> Rule:
     """Register a rule (at import time of the module that checks it) and return it.
 
     What it blocks defaults to: "packaging" for the package group, "advice" for a
-    warning, "simulation" for an error or a fatal problem.
+    warning, "simulation" for an error or a fatal problem. `repair` says what `sw2sim
+    convert` does about the problem where it has exactly one right answer (the rule's check
+    then hands each finding its `sw2sim.check.repairs.Repair`).
     """
     if id in RULES:
         raise ValueError(f"rule {id!r} registered twice")
@@ -73,7 +77,10 @@ def rule(id: str, severity: str, group: str, title: str, *, symptom: str, cause:
         raise ValueError(f"rule {id!r}: blocks must be one of {BLOCKS}")
     if blocks == PACKAGING and severity == FATAL:
         raise ValueError(f"rule {id!r}: a problem of packaging alone cannot be fatal")
-    RULES[id] = Rule(id, severity, group, title, symptom, cause, fix, tuple(seen_in), blocks)
+    if repair is not None and severity == FATAL:
+        raise ValueError(f"rule {id!r}: a fatal problem leaves nothing to repair")
+    RULES[id] = Rule(id, severity, group, title, symptom, cause, fix, tuple(seen_in), blocks,
+                     repair)
     return RULES[id]
 
 
@@ -86,6 +93,7 @@ class Finding:
     file: str | None = None
     line: int | None = None
     blocks: str = SIMULATION   # the rule's: what the problem stands in the way of
+    repair: str | None = None  # what `convert` does about it here, and what it assumes
 
     @property
     def where(self) -> str:
@@ -95,12 +103,18 @@ class Finding:
 
     @property
     def stops_simulation(self) -> bool:
-        return self.blocks == SIMULATION and self.severity in (FATAL, ERROR)
+        """Whether `convert` refuses the package for it: an error that makes the model
+        wrong or unloadable, and that convert cannot repair."""
+        return (self.blocks == SIMULATION and self.severity in (FATAL, ERROR)
+                and self.repair is None)
 
     def format(self) -> str:
         kind = self.severity if self.blocks == SIMULATION or self.severity == WARNING \
             else f"{self.severity} ({BLOCKS_SAYS[self.blocks]})"
-        return f"{self.where}: {kind} [{self.rule}] {self.message}. Fix: {self.fix}"
+        line = f"{self.where}: {kind} [{self.rule}] {self.message}. Fix: {self.fix}"
+        if self.repair:
+            line = f"{line.rstrip('.')}. Convert repairs it: {self.repair}."
+        return line
 
 
 @dataclass
@@ -122,8 +136,13 @@ class Report:
     @property
     def simulation_stoppers(self) -> list[Finding]:
         """The findings that stop a conversion: errors that make the model wrong or
-        unloadable (problems of ROS packaging alone do not)."""
+        unloadable and have no repair (problems of ROS packaging alone do not)."""
         return [f for f in self.findings if f.stops_simulation]
+
+    @property
+    def repaired(self) -> list[Finding]:
+        """The findings `convert` repairs in its copy of the model."""
+        return [f for f in self.findings if f.repair]
 
     def count(self, severity: str) -> int:
         return sum(f.severity == severity for f in self.findings)

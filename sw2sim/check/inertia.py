@@ -16,7 +16,9 @@ from scipy.spatial import ConvexHull, QhullError
 
 from ..xmlsafe import source_line
 from .findings import ERROR, WARNING, rule
-from .geometry import Inertial, Tree, closed_solid, inertial_of, link_geometry
+from .geometry import (Inertial, Tree, closed_solid, inertial_of, link_geometry,
+                       origin_matrix)
+from .repairs import balanced, repair, write_inertial, write_tensor
 
 # MuJoCo's smallest mass or principal moment of inertia (mjMINVAL).
 MJMINVAL = 1e-15
@@ -25,12 +27,22 @@ MJMINVAL = 1e-15
 # placeholders such as 1e-9; MuJoCo accepts them down to mjMINVAL, but next to kilogram
 # links they make the mass matrix so ill-conditioned that the link jitters or explodes.
 TINY_MASS = 1e-6
-# A + B >= C is checked with this relative slack, so that rounding in the 15 digits the
-# exporter writes (and in the eigenvalues) is not reported; real violations are far larger.
-TRIANGLE_SLACK = 1e-9
-# Densities outside this range belong to no solid material (the lightest foams are about
-# 10 kg/m^3, osmium, the densest element, 22,600 kg/m^3).
-DENSITY_RANGE = (10.0, 25_000.0)
+# A + B >= C is checked with this relative slack, the noise of computing eigenvalues in
+# double precision: MuJoCo itself refuses a shortfall of 1e-12 of C.
+TRIANGLE_SLACK = 1e-14
+# A shortfall up to this fraction of C is rounding in the written values (a thin plate's
+# C = A + B typed with five digits): `convert` balances it. Larger ones are real errors.
+ROUNDING = 1e-3
+# Densities outside this range belong to no material a machine part is made of: balsa, the
+# lightest wood, is about 150 kg/m^3 (only foams are lighter), osmium, the densest element,
+# 22,600 kg/m^3. Judged on a mesh's convex hull, which holds more than the part, a density
+# still reads low for a hollow part, but not below 100 unless its walls are foil.
+DENSITY_RANGE = (100.0, 25_000.0)
+
+RECOMPUTE = ("only when asked: with `--density KG_PER_M3` (your material's density), the link's "
+             "mass, centre of mass and inertia are computed from its collision mesh, or its "
+             "visual mesh, as a solid of that density; from the mesh's convex hull when the "
+             "mesh is not closed, which overestimates them.")
 
 rule("inertial-missing", WARNING, "inertia", "A moving link has no <inertial>",
      symptom="MuJoCo gives the link a mass computed from its collision geometry as if it were "
@@ -55,14 +67,16 @@ rule("mass-not-positive", ERROR, "inertia", "A mass is negative, or a moving lin
            "or an <inertial> written by hand with a placeholder value.",
      fix="Set the mass to the part's real mass (SolidWorks: Mass Properties, or the "
          "exporter's mass field) and export again.",
-     seen_in=("mujoco#739", "solidworks_urdf_exporter#172"))
+     seen_in=("mujoco#739", "solidworks_urdf_exporter#172"),
+     repair=RECOMPUTE)
 rule("mass-tiny", WARNING, "inertia", "A moving link weighs less than a milligram",
      symptom="MuJoCo loads the model, but the light link jitters, drifts or makes the "
              "simulation explode, and small time steps do not help.",
      cause="A unit slip (grams or tonnes for kilograms) or a placeholder such as 1e-9 left "
            "in the URDF; no real part of a SolidWorks assembly is that light.",
      fix="Write the mass in kilograms, as SolidWorks' Mass Properties gives it.",
-     seen_in=("mujoco#739",))
+     seen_in=("mujoco#739",),
+     repair=RECOMPUTE)
 rule("inertia-not-positive-definite", ERROR, "inertia", "An inertia tensor is not positive "
      "definite",
      symptom="MuJoCo stops with \"inertia must have positive eigenvalues\" or \"mass and "
@@ -82,7 +96,10 @@ rule("inertia-triangle", ERROR, "inertia", "The principal moments break A + B >=
      fix="Copy the tensor again from SolidWorks' Mass Properties at the centre of mass. "
          "balanceinertia=\"true\" in MuJoCo's <compiler> hides the error by averaging the "
          "moments, but the link then turns with the wrong inertia.",
-     seen_in=("mujoco#375",))
+     seen_in=("mujoco#375",),
+     repair=f"a shortfall of at most {ROUNDING:.1%} of C is rounding: the two smaller moments are "
+            "raised together until A + B = C, the principal axes kept. Larger ones are not "
+            "repaired.")
 rule("com-outside-geometry", WARNING, "inertia", "The centre of mass lies outside the link",
      symptom="The link leans, tips or swings as if weighted on one side; the model falls "
              "over where the real machine stands.",
@@ -98,7 +115,8 @@ rule("density-implausible", WARNING, "inertia", "The mass does not fit the mesh'
            "parts add mass that the mesh does not show.",
      fix="Compare the link's mass with its volume in SolidWorks' Mass Properties and set the "
          "part's material, or correct the mass.",
-     seen_in=("solidworks_urdf_exporter#101", "solidworks_urdf_exporter#164"))
+     seen_in=("solidworks_urdf_exporter#101", "solidworks_urdf_exporter#164"),
+     repair=RECOMPUTE)
 
 
 def check(ctx) -> None:
@@ -115,7 +133,7 @@ def check(ctx) -> None:
                 ctx.add("mass-not-positive", f'link "{name}" moves (joint '
                         f'"{tree.joint_name(name)}") but has no <inertial> and no collision '
                         "geometry for MuJoCo to compute a mass from",
-                        line=source_line(link))
+                        line=source_line(link), repair=_recompute(ctx, link))
             elif tree.moves(name):
                 ctx.add("inertial-missing", f'link "{name}" moves (joint '
                         f'"{tree.joint_name(name)}") but has no <inertial>' + _fallback(link),
@@ -128,7 +146,7 @@ def check(ctx) -> None:
             ctx.add("inertial-incomplete", f'link "{name}": the <inertial> has no '
                     f"{', '.join(inertial.missing)}", line=source_line(at, None))
         mass_ok = _mass(ctx, tree, name, inertial, alone=not mass)
-        _tensor(ctx, name, inertial, alone=not inertia)
+        _tensor(ctx, link, inertial, alone=not inertia)
         if mass_ok and inertial.centre is not None:
             _placement(ctx, link, inertial)
 
@@ -164,33 +182,37 @@ def _mass(ctx, tree: Tree, name: str, inertial: Inertial, alone: bool) -> bool:
     line = source_line(inertial.element.find("mass"), "value")
     if mass < 0:
         ctx.add("mass-not-positive", f'link "{name}" has a negative mass, {mass:g} kg',
-                line=line)
+                line=line, repair=_recompute(ctx, ctx.links[name]))
         return False
     if mass <= MJMINVAL:
         if alone:
             ctx.add("mass-not-positive", f'link "{name}" moves (joint '
                     f'"{tree.joint_name(name)}") but its mass is {mass:g} kg, and no link '
-                    "fixed to it has mass", line=line)
+                    "fixed to it has mass", line=line, repair=_recompute(ctx, ctx.links[name]))
         return False
     if mass < TINY_MASS and tree.body(name) is not None:
         ctx.add("mass-tiny", f'link "{name}" moves but weighs {mass:.3g} kg, less than a '
-                f"milligram ({TINY_MASS:g} kg)", line=line)
+                f"milligram ({TINY_MASS:g} kg)", line=line,
+                repair=_recompute(ctx, ctx.links[name]))
         return False
     return True
 
 
-def _tensor(ctx, name: str, inertial: Inertial, alone: bool) -> None:
+def _tensor(ctx, link, inertial: Inertial, alone: bool) -> None:
     """Report an inertia tensor MuJoCo refuses."""
+    name = link.get("name", "")
     tensor = inertial.tensor
     if tensor is None:
         return
-    line = source_line(inertial.element.find("inertia"), None)
+    element = inertial.element.find("inertia")
+    line = source_line(element, None)
     if not tensor.any():
         if alone:
             ctx.add("inertia-not-positive-definite", f'link "{name}" moves but all six terms '
                     "of its inertia are zero, and no link fixed to it has inertia", line=line,
                     fix="write the part's inertia tensor from SolidWorks' Mass Properties; "
-                        "for a small part, that of a solid box of its size will do")
+                        "for a small part, that of a solid box of its size will do",
+                    repair=_recompute(ctx, link))
         return
     a, b, c = (float(m) for m in np.linalg.eigvalsh(tensor))
     shown = f"{a:.4g}, {b:.4g}, {c:.4g} kg m^2"
@@ -198,8 +220,50 @@ def _tensor(ctx, name: str, inertial: Inertial, alone: bool) -> None:
         ctx.add("inertia-not-positive-definite", f'link "{name}": the principal moments of '
                 f"its inertia are {shown}; all three must be positive", line=line)
     elif a + b < c * (1 - TRIANGLE_SLACK):
+        short = c - (a + b)
+        fixed = None
+        if short <= ROUNDING * c:
+            # The tensor as written (in the <inertial>'s own axes), balanced.
+            turn = origin_matrix(inertial.element)[:3, :3]
+            written = balanced(turn.T @ tensor @ turn)
+            fixed = repair(f'the moments of link "{name}" are raised by {short / 2:.3g} kg m^2 '
+                           f"each, {short / c:.2g} of C, as a shortfall that small is rounding",
+                           (element, write_tensor(written)))
         ctx.add("inertia-triangle", f'link "{name}": the principal moments of its inertia are '
-                f"{shown}, and {a:.4g} + {b:.4g} = {a + b:.4g} is less than {c:.4g}", line=line)
+                f"{shown}, and {a:.4g} + {b:.4g} = {a + b:.4g} is less than {c:.4g}", line=line,
+                repair=fixed)
+
+
+def _recompute(ctx, link):
+    """With --density: the link's mass, centre of mass and inertia from its geometry as a
+    solid of that density (its convex hull when the geometry is not closed); else None."""
+    density = ctx.options.density
+    if density is None:
+        return None
+    for kind in ("collision", "visual"):
+        pieces = link_geometry(ctx, link, kind)
+        if pieces:
+            break
+    else:
+        return None
+    import trimesh
+    closed = all(closed_solid(p) is not None for p in pieces)
+    try:
+        if closed:
+            triangles = np.vstack([p.mesh.triangles for p in pieces])
+        else:
+            hull = trimesh.convex.convex_hull(np.vstack([p.mesh.vertices for p in pieces]))
+            triangles = hull.triangles
+        props = trimesh.triangles.mass_properties(triangles, density=density)
+    except (QhullError, ValueError, IndexError):
+        return None
+    if not props.mass > 0 or not np.all(np.isfinite(props.inertia)):
+        return None
+    what = (f"its closed {kind} geometry" if closed else
+            f"the convex hull of its {kind} geometry (not closed, so an overestimate)")
+    return repair(f'link "{link.get("name", "")}" gets {props.mass:.4g} kg, with its centre of '
+                  f"mass and inertia, computed from {what} at {density:g} kg/m^3 (--density)",
+                  (link, write_inertial(props.mass, props.center_mass, props.inertia)))
 
 
 def _placement(ctx, link, inertial: Inertial) -> None:
@@ -225,14 +289,33 @@ def _placement(ctx, link, inertial: Inertial) -> None:
                                  "xyz" if origin is not None else None))
     solids = [closed_solid(p) for p in pieces]
     if None not in solids:
-        volume = sum(solid.volume() for solid in solids)
-        density = inertial.mass / volume if volume > 0 else None
-        low, high = DENSITY_RANGE
-        if density is not None and not low <= density <= high:
-            ctx.add("density-implausible", f'link "{name}": {inertial.mass:.4g} kg in '
-                    f"{volume * 1e6:.4g} cm^3 of closed {kind} geometry makes {density:,.0f} "
-                    f"kg/m^3 (aluminium: 2,700, steel: 7,850)",
-                    line=source_line(inertial.element.find("mass"), "value"))
+        volume, what = sum(solid.volume() for solid in solids), f"closed {kind} geometry"
+    else:
+        # SolidWorks meshes are often not closed: their convex hull holds at least the
+        # part's volume, so the density it gives is a lower bound, and one above every
+        # material's is wrong all the same. Far below, it is wrong too: the hull of a part
+        # is never hundreds of times its volume.
+        volume, what = _hull_volume(points), f"the convex hull of its {kind} geometry (the " \
+            "mesh is not closed)"
+    density = inertial.mass / volume if volume > 0 else None
+    low, high = DENSITY_RANGE
+    if density is not None and not low <= density <= high:
+        ctx.add("density-implausible", f'link "{name}": {inertial.mass:.4g} kg in '
+                f"{volume * 1e6:.4g} cm^3 of {what} makes {_density(density)} kg/m^3 "
+                "(aluminium: 2,700, steel: 7,850)",
+                line=source_line(inertial.element.find("mass"), "value"),
+                repair=_recompute(ctx, link))
+
+
+def _density(value: float) -> str:
+    return f"{value:,.0f}" if value >= 10 else f"{value:.3g}"
+
+
+def _hull_volume(points: np.ndarray) -> float:
+    try:
+        return float(ConvexHull(points).volume)
+    except (QhullError, ValueError):   # flat points: no volume to judge by
+        return 0.0
 
 
 def _distance_outside(points: np.ndarray, centre: np.ndarray) -> float:

@@ -9,10 +9,12 @@ once, by structure's `number-invalid`, and skipped here.
 
 from __future__ import annotations
 
+import difflib
 import math
 
 from ..xmlsafe import source_line
 from .findings import ERROR, WARNING, rule
+from .repairs import make_fixed, make_unlimited, remove_element, repair
 from .urdf import number, vector
 
 # Joint types whose <axis> is used, whose <limit> is required, and that a motor can drive.
@@ -58,7 +60,12 @@ rule("limit-exporter-default", ERROR, "joint", "The joint still has the exporter
      cause="The exporter writes lower = upper = effort = velocity = 0 when the limit fields "
            "are left empty.",
      fix=f"Enter the real travel, the motor's peak effort and its top speed in {DIALOG}, then "
-         "export again (or edit the <limit>).")
+         "export again (or edit the <limit>).",
+     repair="a revolute or prismatic joint becomes a joint without limits and without an "
+            "actuator, with a warning, because all-zero limits are what the exporter writes "
+            "for fields left empty, not a travel the designer chose; `--lock-default-limits` "
+            "locks it at the home pose instead, as ROS reads it. A continuous joint keeps its "
+            "actuator, without a force limit.")
 rule("limit-range-empty", ERROR, "joint", "A joint's lower limit is not below its upper limit",
      symptom="ROS holds the joint at one position or rejects every target; MuJoCo ignores the "
              "range and lets the joint move without limits.",
@@ -70,12 +77,26 @@ rule("effort-not-positive", ERROR, "joint", "A joint's effort limit is zero or n
              "moves under its controller; MuJoCo ignores a zero effort limit, so the two "
              "disagree.",
      cause="The effort field was left at 0 or typed with a sign.",
-     fix="Enter the motor's peak torque (N m) or force (N), a positive number, as effort.")
+     fix="Enter the motor's peak torque (N m) or force (N), a positive number, as effort.",
+     repair="an effort of 0 sets no force limit: the joint's actuator may push as hard as its "
+            "gains ask.")
 rule("velocity-not-positive", ERROR, "joint", "A joint's velocity limit is zero or negative",
      symptom="ROS tools that respect the velocity limit (MoveIt, joint trajectory "
              "controllers, joint_limits_interface) refuse to move the joint.",
      cause="The velocity field was left at 0 or typed with a sign.",
-     fix="Enter the joint's top speed (rad/s or m/s), a positive number, as velocity.")
+     fix="Enter the joint's top speed (rad/s or m/s), a positive number, as velocity.",
+     repair="nothing to change: MuJoCo has no velocity limit, and a velocity actuator gets no "
+            "control range from it.")
+rule("mimic-joint-missing", ERROR, "joint", "A <mimic> names a joint that does not exist or "
+     "cannot move",
+     symptom="MuJoCo says \"<mimic> on joint ... ignored; mimic requires revolute, continuous, "
+             "or prismatic joints\", which points at the wrong problem, and drops the coupling; "
+             "ROS refuses the URDF or leaves the joint uncoupled.",
+     cause="A typo in the mimicked joint's name, or a joint renamed in the exporter after the "
+           "<mimic> was written by hand.",
+     fix="Write the name of the joint to follow, exactly as its <joint name=...> spells it.",
+     repair="the coupling is dropped, so the joint moves on its own, as MuJoCo would do with "
+            "a warning.")
 rule("limit-on-continuous", WARNING, "joint", "A continuous joint is given lower and upper "
      "limits",
      symptom="Nothing: ROS and MuJoCo ignore lower and upper on a continuous joint, so the "
@@ -103,6 +124,7 @@ def check(ctx) -> None:
             _axis(ctx, joint, name)
         _limit(ctx, joint, name, kind)
         _safety(ctx, joint, name)
+        _mimic(ctx, joint, name)
 
 
 def _axis(ctx, joint, name: str) -> None:
@@ -149,7 +171,8 @@ def _limit(ctx, joint, name: str, kind: str | None) -> None:
                f'for "{name}" in {DIALOG}; lower and upper may stay 0'
                if kind == "continuous" else None)
         ctx.add("limit-exporter-default", f'{kind} joint "{name}" has lower = upper = effort = '
-                "velocity = 0", line=source_line(limit, None), fix=fix)
+                "velocity = 0", line=source_line(limit, None), fix=fix,
+                repair=_default_limit_repair(ctx, joint, name, kind))
         return
     if kind in LIMITED_TYPES and lower is not None and upper is not None and lower >= upper:
         ctx.add("limit-range-empty", f'{kind} joint "{name}" has lower {_g(lower)} and upper '
@@ -161,10 +184,52 @@ def _limit(ctx, joint, name: str, kind: str | None) -> None:
                 f"upper {_g(upper)}, which are ignored", line=source_line(limit, "lower"))
     if effort is not None and effort <= 0:
         ctx.add("effort-not-positive", f'joint "{name}" has effort {_g(effort)}',
-                line=source_line(limit, "effort"))
+                line=source_line(limit, "effort"),
+                repair=repair(f'no force limit on "{name}" (an effort of 0 limits nothing in '
+                              "MuJoCo)") if effort == 0 else None)
     if velocity is not None and velocity <= 0:
         ctx.add("velocity-not-positive", f'joint "{name}" has velocity {_g(velocity)}',
-                line=source_line(limit, "velocity"))
+                line=source_line(limit, "velocity"),
+                repair=repair("none needed: MuJoCo does not use the velocity limit"))
+
+
+def _default_limit_repair(ctx, joint, name: str, kind: str):
+    """The exporter's all-zero limit: free and undriven (the default), or locked."""
+    if kind == "continuous":
+        return repair(f'no force limit on "{name}" and no velocity limit (MuJoCo ignores '
+                      "values of 0)")
+    travel = "slides" if kind == "prismatic" else "turns"
+    if ctx.options.lock_default_limits:
+        return repair(f'"{name}" is locked at its home pose (a fixed joint), as ROS reads a '
+                      "range of 0 to 0 (--lock-default-limits)", (joint, make_fixed))
+    return repair(f'WARNING: "{name}" {travel} freely, without limits and without an actuator; '
+                  "all-zero limits are what the exporter writes for empty fields, not a "
+                  "travel anyone chose (--lock-default-limits locks the joint instead)",
+                  (joint, make_unlimited), unactuated=name)
+
+
+def _mimic(ctx, joint, name: str) -> None:
+    for mimic in joint.findall("mimic"):
+        target = mimic.get("joint")
+        if target is None:
+            continue  # MuJoCo and ROS refuse it outright; structure reports missing names
+        other = ctx.joints.get(target)
+        if other is not None and other.get("type") in DRIVEN_TYPES and target != name:
+            continue
+        if other is None:
+            moving = [n for n, j in ctx.joints.items()
+                      if j.get("type") in DRIVEN_TYPES and n != name]
+            near = difflib.get_close_matches(target, moving, n=3, cutoff=0.4)
+            what = f'no joint is named "{target}"' + (
+                f"; the closest names are {', '.join(repr(n) for n in near)}" if near else "")
+            fix = (f'write mimic joint="{near[0]}" if that is the joint meant' if near else None)
+        else:
+            kind = "itself" if target == name else f'a {other.get("type")} joint'
+            what, fix = f'"{target}" is {kind}, which cannot be followed', None
+        ctx.add("mimic-joint-missing", f'the <mimic> of joint "{name}" names "{target}": '
+                f"{what}", line=source_line(mimic, "joint"), fix=fix,
+                repair=repair(f'the coupling of "{name}" to "{target}" is dropped; "{name}" '
+                              "moves on its own", (mimic, remove_element)))
 
 
 def _safety(ctx, joint, name: str) -> None:

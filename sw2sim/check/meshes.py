@@ -17,9 +17,11 @@ from pathlib import Path
 
 import numpy as np
 
+from ..mesh_paths import closest, matches
 from ..xmlsafe import source_line
 from .context import display
 from .findings import ERROR, WARNING, rule
+from .repairs import repair, set_attribute
 from .geometry import STL_FACE_LIMIT, millimetre_suspect
 from .urdf import owner, vector
 
@@ -34,6 +36,11 @@ HEAVY_FACES = 20_000
 # Thinner than this fraction of its size, a mesh is flat: MuJoCo cannot build its hull.
 FLAT = 1e-6
 
+PATH_REPAIR = ("when exactly one file in the package has the path's file name and agrees "
+               "best with its folders, ignoring capitals and with \\ read as /, the mesh is "
+               "read from that file. With several such files, or none, nothing is repaired and "
+               "the finding names the closest files.")
+
 rule("mesh-no-filename", ERROR, "mesh", "A <mesh> has no filename",
      symptom="MuJoCo stops with an error about the mesh; ROS refuses the URDF.",
      cause="A hand edit that left <mesh/> empty or misspelt the attribute (it is `filename`).",
@@ -45,7 +52,8 @@ rule("mesh-outside-package", ERROR, "mesh", "A mesh path leads outside the packa
      cause="A path with `../`, an absolute path or a file:// URL, or a symbolic link inside "
            "meshes/ that points elsewhere. A package must carry its own meshes.",
      fix="Copy the mesh into the package's meshes/ folder and name it as "
-         "package://<package>/meshes/<file>.")
+         "package://<package>/meshes/<file>.",
+     repair=PATH_REPAIR)
 rule("mesh-not-found", ERROR, "mesh", "A mesh file does not exist",
      symptom="MuJoCo stops with \"resource not found\" or \"Error opening file\"; RViz and "
              "Gazebo show the link without its shape.",
@@ -54,7 +62,8 @@ rule("mesh-not-found", ERROR, "mesh", "A mesh file does not exist",
            "against the folder that holds package.xml.",
      fix="Export the assembly again with its meshes, or correct the path so it names a file "
          "in the package's meshes/ folder.",
-     seen_in=("solidworks_urdf_exporter#89", "solidworks_urdf_exporter#126", "mujoco#1432"))
+     seen_in=("solidworks_urdf_exporter#89", "solidworks_urdf_exporter#126", "mujoco#1432"),
+     repair=PATH_REPAIR)
 rule("mesh-format", ERROR, "mesh", "MuJoCo cannot read this mesh format",
      symptom="MuJoCo stops with \"no decoder found for mesh file\".",
      cause="MuJoCo reads STL, OBJ and its own MSH files only; COLLADA (.dae), PLY, glTF and "
@@ -193,9 +202,11 @@ def _unresolved(ctx, filename: str, meshes) -> None:
     if not _inside(resolved, package.root):
         how = (f"through a symbolic link to {resolved}" if _inside(lexical, package.root)
                else f"to {resolved}")
+        fixed, hint, fix = (None, "", None) if _inside(lexical, package.root) else \
+            _path_repair(ctx, filename, meshes)
         ctx.add("mesh-outside-package", f"{named} leads {how}, outside the package folder "
-                f"{display(package.root)}; the file was not opened{_also(ctx, meshes)}",
-                line=line)
+                f"{display(package.root)}; the file was not opened{hint}{_also(ctx, meshes)}",
+                line=line, fix=fix, repair=fixed)
         return
     try:
         exists = resolved.exists()
@@ -211,8 +222,32 @@ def _unresolved(ctx, filename: str, meshes) -> None:
                 f"{display(package.root)}")
     elif not filename.startswith("file://"):
         hint = "; a relative path starts at the URDF's folder"
-    ctx.add("mesh-not-found", f"{named} not found: looked for {display(resolved)}{hint}"
-            f"{_also(ctx, meshes)}", line=line)
+    fixed, found, fix = _path_repair(ctx, filename, meshes)
+    ctx.add("mesh-not-found", f"{named} not found: looked for {display(resolved)}{hint}{found}"
+            f"{_also(ctx, meshes)}", line=line, fix=fix, repair=fixed)
+
+
+def _path_repair(ctx, filename: str, meshes):
+    """(repair, what the package holds, fix) for a mesh path that leads to no file: the
+    repair when exactly one file can be meant, else None and the closest files."""
+    files = ctx.package_files()
+    found = matches(files, filename)
+    if len(found) == 1:
+        new = f"package://{ctx.package.name}/{found[0].as_posix()}"
+        return (repair(f'the mesh is read from {found[0].as_posix()}, the one file in the package '
+                       "the path can mean", *((m, set_attribute("filename", new)) for m in meshes)),
+                f"; the package holds {found[0].as_posix()}",
+                f'write filename="{new}": the name exactly as on disk, with / (Linux and ROS tell '
+                "capitals apart; Windows does not)")
+    if found:
+        names = ", ".join(f.as_posix() for f in found[:5])
+        return (None, f"; it could mean any of {names}",
+                "write the path of the one that is meant, as package://"
+                f"{ctx.package.name}/<folder>/<file>")
+    near = closest(files, filename)
+    if near:
+        return (None, f"; the closest files are {', '.join(f.as_posix() for f in near)}", None)
+    return None, "", None
 
 
 def _inside(path: Path, root: Path) -> bool:

@@ -12,8 +12,10 @@ from __future__ import annotations
 
 import re
 
+from ..mesh_paths import matches
 from ..xmlsafe import source_line
 from .findings import ERROR, SIMULATION, WARNING, rule
+from .repairs import repair, set_attribute
 from .urdf import owner
 
 # catkin's rules for package names (catkin_pkg, REP 144): a name outside LENIENT_NAME is
@@ -78,7 +80,10 @@ rule("package-name-mismatch", ERROR, "package", "The mesh paths name a different
            "package://<name>/meshes/... paths in the URDF name a package that is not there.",
      fix="Make the names agree: change <name> in package.xml, or replace the package:// "
          "prefix in every mesh path of the URDF.",
-     seen_in=("mujoco#273", "mujoco#1432", "mujoco#1569"), blocks=SIMULATION)
+     seen_in=("mujoco#273", "mujoco#1432", "mujoco#1569"), blocks=SIMULATION,
+     repair="when every such path, read inside this package, leads to exactly one of its "
+            "files (ignoring capitals, with \\ read as /), the meshes are read from those "
+            "files.")
 rule("package-folder-name", WARNING, "package", "The folder's name differs from the "
      "package's name",
      symptom="ROS still finds the package by the name in package.xml, but tools outside ROS "
@@ -163,7 +168,22 @@ def _mesh_package_names(ctx, has_manifest: bool) -> None:
                f'replace "package://{name}/" by "package://{expected}/" in the URDF')
         ctx.add("package-name-mismatch", f'{count} name package "{name}" (first in '
                 f'{owner(meshes[0])}), but this package is "{expected}" according to '
-                f"{source}", line=source_line(meshes[0], "filename"), fix=fix)
+                f"{source}", line=source_line(meshes[0], "filename"), fix=fix,
+                repair=_read_inside(ctx, name, meshes))
+
+
+def _read_inside(ctx, name: str, meshes):
+    """The meshes read from this package's files, when each path leads to exactly one."""
+    files, edits, read = ctx.package_files(), [], {}
+    for mesh in meshes:
+        found = matches(files, mesh.get("filename") or "")
+        if len(found) != 1:
+            return None
+        read[found[0].as_posix()] = True
+        edits.append((mesh, set_attribute(
+            "filename", f"package://{ctx.package.name}/{found[0].as_posix()}")))
+    return repair(f'the paths naming package "{name}" are read inside this package, each from '
+                  f"the one file it can mean: {', '.join(read)}", *edits)
 
 
 def _suggest(name: str) -> str:

@@ -93,10 +93,11 @@ def check(ctx) -> dict:
     started = time.perf_counter()
     with mujoco_warnings() as said:
         try:
-            fixed = ctx.package.world_fixed
-            spec = load_package(ctx.package, fixed_base=fixed)
+            package = ctx.repaired_package()   # as convert writes it
+            fixed = package.world_fixed
+            spec = load_package(package, fixed_base=fixed)
             try:
-                motors = add_motors(spec, ctx.package)
+                motors = add_motors(spec, package)
             except (LoadError, ValueError):
                 motors = []   # the joint checks report unreadable transmissions
             model = spec.compile()

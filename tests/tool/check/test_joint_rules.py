@@ -29,6 +29,9 @@ def _arm_limit(folder: Path, new: str) -> Path:
 # Each maker breaks one thing; WHERE gives the text on the line the finding must point at
 # (doubled spaces make an edited line unique where the plain text repeats).
 BATTERY = {
+    "mimic-joint-missing": lambda d: _example(3, d, '<child\n      link="end_arm_link" />',
+                                              '<child\n      link="end_arm_link" />\n'
+                                              '    <mimic  joint="midle_arm_joint" />'),
     "axis-zero": lambda d: _example(1, d, 'xyz="0 1 0"', 'xyz="0  0 0"'),
     "axis-not-unit": lambda d: _example(1, d, 'xyz="0 1 0"', 'xyz="0 10 0"'),
     "limit-missing": lambda d: _arm_limit(d, "<!-- limit deleted -->"),
@@ -49,6 +52,7 @@ BATTERY = {
         'soft_upper="0.7854"\n      soft_lower="-0.7854"'),
 }
 WHERE = {
+    "mimic-joint-missing": '<mimic  joint="midle_arm_joint"',
     "axis-zero": 'xyz="0  0 0"',
     "axis-not-unit": 'xyz="0 10 0"',
     "limit-missing": 'name="middle_arm_joint"',
