@@ -44,6 +44,11 @@ def _html(text: str) -> str:
     return MarkdownIt("commonmark", {"html": False}).renderInline(text)
 
 
+def _sentence(text: str) -> str:
+    """A rule's repair, which reads on from "convert repairs it:", as a sentence."""
+    return text[0].upper() + text[1:]
+
+
 def rules_data() -> dict:
     """The registry as plain data: groups in page order, each with its rules."""
     groups = []
@@ -51,6 +56,7 @@ def rules_data() -> dict:
         entries = [{"id": r.id, "severity": r.severity, "blocks": r.blocks,
                     "blocks_says": BLOCKS_SAYS[r.blocks], "title": _html(r.title),
                     "symptom": _html(r.symptom), "cause": _html(r.cause), "fix": _html(r.fix),
+                    "repair": _html(_sentence(r.repair)) if r.repair else None,
                     "seen_in": [_link(s) for s in r.seen_in]}
                    for r in all_rules().values() if r.group == group]
         if entries:

@@ -278,6 +278,12 @@ def _convert(args) -> int:
     except OSError as exc:
         _say(f"sw2sim convert: cannot write into {out}: {exc.strerror or exc}")
         return EXIT_UNUSABLE
+    free = [r.unactuated for r in checked.repairs if r.unactuated]
+    if free:
+        print(f"WARNING: {', '.join(free)} move(s) freely in the model, without limits and "
+              "without an actuator: the package gives the exporter's empty limits (all 0). "
+              "Enter the real limits in the exporter and export again, or convert with "
+              "--lock-default-limits to lock them.")
     meshes = f" and {len(result.meshes)} mesh file(s) in assets/" if result.meshes else ""
     print(f"wrote {out}: {result.name}.xml, scene.xml, README.md{meshes}; "
           f"{len(result.actuators)} actuator(s)")

@@ -202,7 +202,7 @@ def _default_limit_repair(ctx, joint, name: str, kind: str):
     if ctx.options.lock_default_limits:
         return repair(f'"{name}" is locked at its home pose (a fixed joint), as ROS reads a '
                       "range of 0 to 0 (--lock-default-limits)", (joint, make_fixed))
-    return repair(f'WARNING: "{name}" {travel} freely, without limits and without an actuator; '
+    return repair(f'"{name}" {travel} freely, without limits and without an actuator, since '
                   "all-zero limits are what the exporter writes for empty fields, not a "
                   "travel anyone chose (--lock-default-limits locks the joint instead)",
                   (joint, make_unlimited), unactuated=name)

@@ -421,3 +421,15 @@ def test_troubleshooting_page_has_an_entry_per_rule(site):
         expected = rule.severity if (rule.severity, rule.blocks) == ("warning", "advice") \
             else f"{rule.severity}: {said}"
         assert kind == expected, (rule.id, kind)
+        # What convert repairs, in the rule's words, where it repairs anything.
+        assert ("<dt>Convert repairs it</dt>" in entry) == bool(rule.repair), rule.id
+
+
+def test_your_own_model_lists_every_repair_from_the_registry(site):
+    from sw2sim.check import all_rules
+    text = built_page(site, "/reference/your-own-model/").read_text()
+    section = between(text, 'id="what-convert-repairs"', "</table>")
+    assert section, "no table under What convert repairs"
+    listed = re.findall(r'href="/reference/troubleshooting/#([a-z0-9-]+)"', section)
+    assert listed == [r.id for r in all_rules().values() if r.repair]
+    assert len(listed) >= 8
