@@ -7,7 +7,9 @@ Sections: `models` (load, compile, step rate of each example), `drawings` (each 
 assembly drawing), `pages` (each lesson page in a fresh process, as tests/course/test_pages.py
 runs them), `figures` (each figure made as `make media` makes it, and whether the tests
 would make it again: they do only when the manifest cannot vouch for the committed file),
-`tests` (each test file in a pytest of its own), `runner` (every lesson page through the
+`tests` (each test file in a pytest of its own), `commands` (each `sw2sim` command in a
+fresh process, as a user types it: `check` on every example package and on one whose two
+moving links carry 100,000 triangles each, `convert`, `render`), `runner` (every lesson page through the
 page runner, its processes plain and then forked from the fork server, side by side with
 `jupyter nbconvert --execute` over the same pages' notebooks; not in the default set).
 
@@ -127,6 +129,46 @@ def tests() -> None:
     section.total()
 
 
+def _sw2sim(*args: str) -> subprocess.CompletedProcess:
+    """One `sw2sim` command in a fresh Python, as typed in a terminal."""
+    return subprocess.run([sys.executable, "-m", "sw2sim", *args], cwd=ROOT,
+                          capture_output=True, text=True)
+
+
+def _heavy_package(folder: Path) -> Path:
+    """Practice 3's arm with both moving links' meshes subdivided to 100,352 triangles each:
+    200,000 mesh faces, the size the check must still answer within 3 s."""
+    import shutil
+
+    import trimesh
+    package = folder / "heavy_arm"
+    shutil.copytree(package_dir(PRACTICES[2]), package)
+    for name in ("middle_arm_link", "end_arm_link"):
+        mesh = trimesh.load(package / "meshes" / f"{name}.STL")
+        while len(mesh.faces) < 100_000:
+            mesh = mesh.subdivide()
+        mesh.export(package / "meshes" / f"{name}.STL")
+    return package
+
+
+def commands() -> None:
+    section = Section("sw2sim commands (each in a fresh process; check's target: 1 s, "
+                      "3 s at 200,000 faces)")
+    with tempfile.TemporaryDirectory() as scratch:
+        scratch = Path(scratch)
+        for practice in PRACTICES:
+            pkg = package_dir(practice)
+            section.timed(f"check {pkg.relative_to(ROOT)}", _sw2sim, "check", str(pkg))
+        heavy = _heavy_package(scratch)
+        section.timed("check, 200,000 mesh faces", _sw2sim, "check", str(heavy))
+        pkg = package_dir(PRACTICES[-1])
+        section.timed(f"convert {pkg.relative_to(ROOT)}", _sw2sim, "convert", str(pkg), "-o",
+                      str(scratch / "converted"))
+        section.timed(f"render {pkg.relative_to(ROOT)}", _sw2sim, "render", str(pkg), "-o",
+                      str(scratch / "picture.png"))
+    section.total()
+
+
 def runner() -> None:
     """The page runner against nbconvert, on the same machine and the same pages.
 
@@ -205,7 +247,7 @@ def runner() -> None:
     print()
 
 
-SECTIONS = {"models": models, "drawings": drawings, "pages": pages, "figures": figures,
+SECTIONS = {"commands": commands, "models": models, "drawings": drawings, "pages": pages, "figures": figures,
             "tests": tests, "runner": runner}
 
 

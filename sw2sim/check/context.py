@@ -135,7 +135,7 @@ class Context:
             return None
 
     def mesh(self, mesh: etree._Element):
-        """The mesh a <mesh> element names as a trimesh.Trimesh in metres (scale applied),
+        """The mesh a <mesh> element names as a `trimeshes.Mesh` in metres (scale applied),
         or None when it cannot be found or read (meshes.check reports why)."""
         path = self.mesh_file(mesh)
         if path is None:
@@ -158,14 +158,8 @@ class Context:
 
 
 def _read_mesh(path: Path):
-    import trimesh
-    try:
-        loaded = trimesh.load(str(path), force="mesh", process=False)
-    except Exception:  # noqa: BLE001  (any reader failure means "unreadable"; meshes.check says so)
-        return None
-    if not isinstance(loaded, trimesh.Trimesh) or len(loaded.faces) == 0:
-        return None
-    return loaded
+    from .trimeshes import read
+    return read(path)
 
 
 def display(path: str | os.PathLike) -> str:

@@ -11,9 +11,8 @@ from dataclasses import dataclass
 
 import manifold3d
 import numpy as np
-import trimesh
-from trimesh.transformations import euler_matrix
 
+from .trimeshes import Mesh, box, cylinder, euler_matrix, sphere
 from .urdf import number, vector
 
 
@@ -26,7 +25,7 @@ STL_FACE_LIMIT = 200_000
 FAR = 1e5
 
 
-def millimetre_suspect(link, mesh: trimesh.Trimesh) -> str | None:
+def millimetre_suspect(link, mesh: Mesh) -> str | None:
     """Why `mesh` (in metres as the URDF scales it) looks like millimetres, or None.
 
     A link's inertia says how far its mass lies from its centre: with mass m and moments
@@ -62,9 +61,9 @@ class Piece:
 
     element: object             # the <visual> or <collision> element
     shape: object               # its <mesh>, <box>, <cylinder> or <sphere>
-    mesh: trimesh.Trimesh       # metres, link frame, vertices merged; its own copy
+    mesh: Mesh       # metres, link frame, vertices merged; its own copy
     pose: np.ndarray            # the element's <origin>: where `local` sits in the link
-    local: trimesh.Trimesh      # the shape in its own frame, shared: never change it
+    local: Mesh      # the shape in its own frame, shared: never change it
 
 
 def link_geometry(ctx, link, kind: str = "collision") -> list[Piece] | None:
@@ -99,7 +98,7 @@ def origin_matrix(element) -> np.ndarray | None:
     rpy = vector(origin.get("rpy", "0 0 0"), 3)
     if xyz is None or rpy is None:
         return None
-    pose = euler_matrix(*rpy, "sxyz")  # URDF: roll about x, then pitch about y, then yaw about z
+    pose = euler_matrix(*rpy)  # URDF: roll about x, then pitch about y, then yaw about z
     pose[:3, 3] = xyz
     return pose
 
@@ -109,7 +108,7 @@ def origin_matrix(element) -> np.ndarray | None:
 _merged: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
 
 
-def _shape_mesh(ctx, link, shape) -> trimesh.Trimesh | None:
+def _shape_mesh(ctx, link, shape) -> Mesh | None:
     """The shape as a mesh in its own frame (shared: copy it before changing it)."""
     if shape.tag == "mesh":
         cache = _merged.setdefault(ctx, {})
@@ -129,15 +128,14 @@ def _shape_mesh(ctx, link, shape) -> trimesh.Trimesh | None:
         return mesh
     if shape.tag == "box":
         size = vector(shape.get("size"), 3)
-        return trimesh.creation.box(extents=size) if size and _sizes_ok(*size) else None
+        return box(size) if size and _sizes_ok(*size) else None
     radius = number(shape.get("radius"))
     if shape.tag == "sphere":
-        return trimesh.creation.icosphere(subdivisions=3, radius=radius) \
-            if _sizes_ok(radius) else None
+        return sphere(radius) if _sizes_ok(radius) else None
     length = number(shape.get("length"))
     if not _sizes_ok(radius, length):
         return None
-    return trimesh.creation.cylinder(radius=radius, height=length, sections=48)
+    return cylinder(radius, length, sections=48)
 
 
 def _sizes_ok(*sizes) -> bool:
@@ -162,7 +160,7 @@ def closed_solid(piece: Piece, pose: np.ndarray | None = None) -> manifold3d.Man
     return solid.transform(place[:3, :4])
 
 
-def _as_solid(mesh: trimesh.Trimesh) -> manifold3d.Manifold | None:
+def _as_solid(mesh: Mesh) -> manifold3d.Manifold | None:
     """The mesh as a manifold3d solid when it is closed, without self-contradicting edges,
     and outward-facing (positive volume); None for an open, inverted or broken mesh."""
     try:

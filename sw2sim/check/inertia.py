@@ -12,13 +12,13 @@ no material has) is a warning.
 from __future__ import annotations
 
 import numpy as np
-from scipy.spatial import ConvexHull, QhullError
 
 from ..xmlsafe import source_line
 from .findings import ERROR, WARNING, rule
 from .geometry import (Inertial, Tree, closed_solid, inertial_of, link_geometry,
                        origin_matrix)
 from .repairs import balanced, repair, write_inertial, write_tensor
+from .trimeshes import hull, hull_planes, hull_volume
 
 # MuJoCo's smallest mass or principal moment of inertia (mjMINVAL).
 MJMINVAL = 1e-15
@@ -246,17 +246,16 @@ def _recompute(ctx, link):
             break
     else:
         return None
-    import trimesh
+    import trimesh   # only with --density: the check itself does without it
     closed = all(closed_solid(p) is not None for p in pieces)
-    try:
-        if closed:
-            triangles = np.vstack([p.mesh.triangles for p in pieces])
-        else:
-            hull = trimesh.convex.convex_hull(np.vstack([p.mesh.vertices for p in pieces]))
-            triangles = hull.triangles
-        props = trimesh.triangles.mass_properties(triangles, density=density)
-    except (QhullError, ValueError, IndexError):
-        return None
+    if closed:
+        triangles = np.vstack([p.mesh.triangles for p in pieces])
+    else:
+        shape = hull(np.vstack([p.mesh.vertices for p in pieces]))
+        if shape is None:
+            return None
+        triangles = shape.triangles
+    props = trimesh.triangles.mass_properties(triangles, density=density)
     if not props.mass > 0 or not np.all(np.isfinite(props.inertia)):
         return None
     what = (f"its closed {kind} geometry" if closed else
@@ -295,7 +294,7 @@ def _placement(ctx, link, inertial: Inertial) -> None:
         # part's volume, so the density it gives is a lower bound, and one above every
         # material's is wrong all the same. Far below, it is wrong too: the hull of a part
         # is never hundreds of times its volume.
-        volume, what = _hull_volume(points), f"the convex hull of its {kind} geometry (the " \
+        volume, what = hull_volume(points), f"the convex hull of its {kind} geometry (the " \
             "mesh is not closed)"
     density = inertial.mass / volume if volume > 0 else None
     low, high = DENSITY_RANGE
@@ -311,19 +310,11 @@ def _density(value: float) -> str:
     return f"{value:,.0f}" if value >= 10 else f"{value:.3g}"
 
 
-def _hull_volume(points: np.ndarray) -> float:
-    try:
-        return float(ConvexHull(points).volume)
-    except (QhullError, ValueError):   # flat points: no volume to judge by
-        return 0.0
-
-
 def _distance_outside(points: np.ndarray, centre: np.ndarray) -> float:
     """How far `centre` lies outside the convex hull of `points` (0 inside): the height above
     the farthest face plane, exact near a face and a little short near an edge or corner."""
-    try:
-        planes = ConvexHull(points).equations  # outward normal n and offset d: n.x + d <= 0
+    planes = hull_planes(points)   # outward normal n and offset d: n.x + d <= 0 inside
+    if planes is not None and len(planes):
         return max(0.0, float((planes[:, :3] @ centre + planes[:, 3]).max()))
-    except (QhullError, ValueError):  # flat or degenerate points: use the bounding box
-        low, high = points.min(axis=0), points.max(axis=0)
-        return float(np.linalg.norm(np.maximum(0, np.maximum(low - centre, centre - high))))
+    low, high = points.min(axis=0), points.max(axis=0)   # flat points: the bounding box
+    return float(np.linalg.norm(np.maximum(0, np.maximum(low - centre, centre - high))))
