@@ -34,6 +34,8 @@ rule("axis-zero", ERROR, "joint", "A joint's axis is all zeros",
            "is unused and not reported.)",
      fix="Select the joint's reference axis in the exporter and export again, or write the "
          "direction in the child link's frame, e.g. <axis xyz=\"0 0 1\"/>.",
+     repair="a joint that also has the exporter's empty limits (all 0) is a frame, such as "
+            "a sensor's: it is locked, as a fixed joint. Any other stays an error.",
      seen_in=("solidworks_urdf_exporter#8",))
 rule("axis-not-unit", WARNING, "joint", "A joint's axis is not of length 1",
      symptom="Nothing visible: ROS and MuJoCo scale the axis to length 1. But a length far "
@@ -138,7 +140,11 @@ def _axis(ctx, joint, name: str) -> None:
     line = source_line(axis, "xyz")
     written = " ".join(_g(v) for v in xyz)
     if length < 1e-9:
-        ctx.add("axis-zero", f'joint "{name}" has axis xyz="{written}"', line=line)
+        frame = _is_frame(joint)
+        ctx.add("axis-zero", f'joint "{name}" has axis xyz="{written}"', line=line,
+                repair=repair(f'"{name}" is locked (a fixed joint): with no axis and the '
+                              "exporter's empty limits it is a frame, not a joint that moves",
+                              (joint, make_fixed)) if frame else None)
     elif abs(length - 1.0) > UNIT_TOLERANCE:
         unit = " ".join(f"{v / length:.5g}" for v in xyz)
         ctx.add("axis-not-unit", f'joint "{name}" has axis xyz="{written}" of length '
@@ -193,8 +199,21 @@ def _limit(ctx, joint, name: str, kind: str | None) -> None:
                 repair=repair("none needed: MuJoCo does not use the velocity limit"))
 
 
+def _is_frame(joint) -> bool:
+    """Whether a joint has neither an axis nor a travel: all-zero axis and limit, as the
+    exporter writes for a coordinate frame (a sensor's, a tool's) made a joint."""
+    axis = joint.find("axis")
+    xyz = vector(axis.get("xyz"), 3) if axis is not None else None
+    limit = joint.find("limit")
+    return (xyz is not None and not any(xyz) and limit is not None and
+            all(number(limit.get(a, "0")) == 0 for a in ("lower", "upper", "effort", "velocity")))
+
+
 def _default_limit_repair(ctx, joint, name: str, kind: str):
     """The exporter's all-zero limit: free and undriven (the default), or locked."""
+    if _is_frame(joint):
+        return repair(f'"{name}" is locked (a fixed joint): with no axis and the exporter\'s '
+                      "empty limits it is a frame, not a joint that moves", (joint, make_fixed))
     if kind == "continuous":
         return repair(f'no force limit on "{name}" and no velocity limit (MuJoCo ignores '
                       "values of 0)")

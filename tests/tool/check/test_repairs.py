@@ -359,3 +359,26 @@ def test_every_fault_at_once_converts_with_a_repair_for_each(tmp_path, capsys):
     for rule_id in ("mesh-not-found", "limit-exporter-default", "effort-not-positive",
                     "inertia-triangle", "mimic-joint-missing"):
         assert f"[{rule_id}]" in section, rule_id
+
+
+def test_a_joint_without_axis_or_travel_is_locked_as_a_frame(tmp_path, capsys):
+    package, urdf = _arm(tmp_path)
+    edit_re(urdf, r'(name="end_arm_joint".*?<axis\s+)xyz="[^"]*"', r'\1xyz="0 0 0"')
+    edit_re(urdf, r'(name="end_arm_joint".*?<limit\s+)lower="[^"]*"\s+upper="[^"]*"\s+'
+            r'effort="[^"]*"\s+velocity="[^"]*"', r'\1lower="0" upper="0" effort="0" velocity="0"')
+    report = check(package, stability=False)
+    assert {"axis-zero", "limit-exporter-default"} <= report.rules()
+    assert all("locked" in f.repair for f in report.findings
+               if f.rule in ("axis-zero", "limit-exporter-default"))
+    status, said = convert(package, tmp_path / "out", capsys=capsys)
+    assert status == 0, said
+    model = compiled(tmp_path / "out")
+    assert "end_arm_joint" not in {model.joint(j).name for j in range(model.njnt)}
+
+
+def test_a_zero_axis_on_a_joint_with_travel_stays_an_error(tmp_path, capsys):
+    package, urdf = _arm(tmp_path)
+    edit_re(urdf, r'(name="end_arm_joint".*?<axis\s+)xyz="[^"]*"', r'\1xyz="0 0 0"')
+    [finding] = [f for f in check(package, stability=False).findings if f.rule == "axis-zero"]
+    assert finding.repair is None
+    assert convert(package, tmp_path / "out", capsys=capsys)[0] == 1
