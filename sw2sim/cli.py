@@ -99,8 +99,8 @@ examples:
 
 RENDER_HELP = """\
 Saves a PNG picture of the model at its start pose, drawn off-screen (no display
-needed). The camera looks at the model's centre from AZIMUTH and ELEVATION
-degrees. An existing file is kept unless --force is given.
+needed). The camera looks from AZIMUTH and ELEVATION degrees and frames the whole
+robot as it stands on the floor. An existing file is kept unless --force is given.
 
 The package is checked first (without the simulation); findings are printed,
 and the picture is made as long as MuJoCo can load the model.
@@ -415,7 +415,8 @@ def _render(args) -> int:
     from .render import render, save_png
     try:
         image = render(model, mujoco.MjData(model), width=args.width, height=args.height,
-                       azimuth=args.azimuth, elevation=args.elevation, shadows=args.shadows)
+                       azimuth=args.azimuth, elevation=args.elevation, shadows=args.shadows,
+                       frame=True)
     except Exception as exc:  # noqa: BLE001  (no OpenGL here: say how to get one)
         _say(f"sw2sim render: cannot draw off-screen ({type(exc).__name__}: {exc}). On Debian or "
              "Ubuntu install libosmesa6 (sudo apt install libosmesa6), or set MUJOCO_GL=egl.")
