@@ -11,6 +11,8 @@ from __future__ import annotations
 
 import copy
 import os
+import sys
+from contextlib import contextmanager
 from pathlib import Path
 
 import numpy as np
@@ -70,7 +72,8 @@ def load_package(source: str | os.PathLike | Package, *, fixed_base: bool = True
 
     xml = etree.tostring(robot, encoding="unicode")
     try:
-        spec = mujoco.MjSpec.from_string(xml)
+        with _c_output_silenced():
+            spec = mujoco.MjSpec.from_string(xml)
     except ValueError as exc:
         raise LoadError(urdf, f"MuJoCo cannot read this URDF: {exc}") from None
     spec.modelname = robot.get("name") or package.name
@@ -83,6 +86,29 @@ def load_package(source: str | os.PathLike | Package, *, fixed_base: bool = True
         root_body.add_freejoint()
     _add_scene(spec, urdf, root_body, lift=not fixed_base, dress=scene)
     return spec
+
+
+@contextmanager
+def _c_output_silenced():
+    """Keep MuJoCo's URDF reader from printing on the process's standard output and error
+    (it prints one warning, about duplicate geom names, that no handler catches; `sw2sim
+    check` reports it as a finding of its own, geom-name-duplicate)."""
+    saved = []
+    try:
+        for stream in (sys.stdout, sys.stderr):
+            try:
+                stream.flush()
+                fd = stream.fileno()
+            except (AttributeError, OSError, ValueError):   # no real file behind it
+                continue
+            saved.append((fd, os.dup(fd)))
+            with open(os.devnull, "wb") as null:
+                os.dup2(null.fileno(), fd)
+        yield
+    finally:
+        for fd, copy_of in saved:
+            os.dup2(copy_of, fd)
+            os.close(copy_of)
 
 
 def _root_body(spec: mujoco.MjSpec, urdf: Path) -> mujoco.MjsBody:

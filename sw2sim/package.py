@@ -165,12 +165,26 @@ def _read_urdf(urdf: Path) -> etree._Element:
     except etree.XMLSyntaxError as exc:
         raise LoadError(urdf, f"not well-formed XML: {exc.msg}", exc.lineno or None,
                         kind="syntax", detail=exc.msg) from None
+    if robot is not None and isinstance(robot.tag, str) and robot.tag.startswith("{"):
+        _drop_namespaces(robot)
     if robot is None or robot.tag != "robot":
         tag = "nothing" if robot is None else f"<{robot.tag}>"
         raise LoadError(urdf, f"the root element is {tag}, a URDF starts with <robot>",
                         None if robot is None else robot.sourceline, kind="not-urdf",
                         detail=f"the top element is {tag}; a URDF starts with <robot name=\"...\">")
     return robot
+
+
+def _drop_namespaces(root: etree._Element) -> None:
+    """Read `<robot xmlns="...">` as `<robot>`: the reference parser (urdfdom) matches
+    elements by their local names, so a namespaced URDF is a URDF."""
+    for element in root.iter():
+        if isinstance(element.tag, str) and element.tag.startswith("{"):
+            element.tag = etree.QName(element).localname
+        for name in [n for n in element.attrib if n.startswith("{")]:
+            value = element.attrib.pop(name)
+            element.set(etree.QName(name).localname, value)
+    etree.cleanup_namespaces(root)
 
 
 def _why(exc: OSError) -> str:

@@ -51,6 +51,16 @@ rule("inertial-missing", WARNING, "inertia", "A moving link has no <inertial>",
            "without one. The exporter writes one for every link.",
      fix="Add an <inertial> with the part's mass, centre of mass and inertia tensor, from "
          "SolidWorks' Mass Properties (Tools, Evaluate, Mass Properties), or export again.")
+rule("root-link-massless", ERROR, "inertia", "A free-floating robot's root link has no mass",
+     symptom="MuJoCo stops with \"mass and inertia of moving bodies must be larger than "
+             "mjMINVAL\"; Gazebo drops the link, or the robot falls through the floor.",
+     cause="The URDF has no link named `world`, so the root link floats free, as a vehicle's "
+           "or a walking robot's does, and a free body needs mass. Its <inertial> is missing "
+           "or zero: a placeholder base link, or an arm meant to be bolted down.",
+     fix="Either give the root link its real mass and inertia (SolidWorks: Mass Properties) "
+         "for a base that moves freely, or bolt the robot down: add <link name=\"world\"/> "
+         "and a fixed joint from world to the root link, as an arm on a table needs.",
+     repair=RECOMPUTE)
 rule("inertial-incomplete", ERROR, "inertia", "An <inertial> lacks its mass or a term of "
      "its inertia",
      symptom="MuJoCo stops with \"missing element: 'mass'\" (or 'inertia') or \"required "
@@ -149,6 +159,40 @@ def check(ctx) -> None:
         _tensor(ctx, link, inertial, alone=not inertia)
         if mass_ok and inertial.centre is not None:
             _placement(ctx, link, inertial)
+    _free_root(ctx, tree, inertials)
+
+
+def _free_root(ctx, tree: Tree, inertials: dict) -> None:
+    """The root link of a robot without a `world` link floats free, as in Gazebo: MuJoCo
+    gives it a free joint, and it (with the links fixed to it) must bring mass."""
+    if ctx.package.world_fixed:
+        return
+    roots = [name for name in ctx.links if tree.parent(name) is None]
+    if len(roots) != 1:
+        return   # structure.py reports several roots, or a cycle
+    root = roots[0]
+    link = ctx.links[root]
+    members = [name for name in ctx.links if tree.body(name) is None]
+    mass = inertia = False
+    for name in members:
+        inertial = inertials.get(name)
+        if inertial is None:
+            if ctx.links[name].find("collision") is not None:
+                mass = inertia = True   # MuJoCo computes both from the collision geometry
+            continue
+        mass = mass or (inertial.mass is not None and inertial.mass > MJMINVAL)
+        inertia = inertia or (inertial.tensor is not None and bool(inertial.tensor.any()))
+    if not (mass and inertia):
+        lacks = "mass" if not mass else "inertia"
+        own = "no <inertial>" if inertials.get(root) is None else f"no {lacks}"
+        ctx.add("root-link-massless", f'the root link "{root}" has {own}, and no link fixed '
+                f"to it brings any, so as the free-floating base of a robot without a "
+                f'"world" link it cannot be simulated', line=source_line(link),
+                repair=_recompute(ctx, link))
+    elif inertials.get(root) is None:
+        ctx.add("inertial-missing", f'the root link "{root}" floats free (the URDF has no '
+                '"world" link) but has no <inertial>' + _fallback(link),
+                line=source_line(link))
 
 
 def _body_has(ctx, tree: Tree, inertials: dict, head: str) -> tuple[bool, bool]:

@@ -15,7 +15,7 @@ from collections import defaultdict
 from difflib import get_close_matches
 
 from ..xmlsafe import source_line
-from .findings import ERROR, rule
+from .findings import ERROR, PACKAGING, WARNING, rule
 from .urdf import number, owner
 
 JOINT_TYPES = ("revolute", "continuous", "prismatic", "fixed", "floating", "planar")
@@ -93,6 +93,44 @@ rule("number-invalid", ERROR, "structure", "A number in the URDF does not parse"
      fix="Write plain decimal numbers in SI units (metres, radians, kilograms), with a "
          "decimal point, and exactly as many as the attribute takes (three for xyz and rpy).")
 
+rule("urdf-version", ERROR, "structure", "The <robot> names a URDF version ROS does not read",
+     symptom="ROS's URDF parser (urdfdom, as in ROS 1 and Debian) refuses the file: \"Invalid "
+             "'version' specified; only version 1.0 is currently supported\", or \"The "
+             "version attribute should be in the form 'x.y'\". MuJoCo ignores the attribute.",
+     cause="A hand edit, or a file written for a newer URDF (version 1.1, which newer "
+           "urdfdom releases read for capsules and quaternions).",
+     fix="Delete version=\"...\" from <robot>, or write version=\"1.0\".",
+     blocks=PACKAGING)
+rule("geometry-unknown", ERROR, "structure", "A <geometry> holds no shape URDF knows",
+     symptom="MuJoCo stops with \"geometry specification not found\"; ROS stops with "
+             "\"Unknown geometry type\" and drops the link.",
+     cause="A shape URDF does not have (a <cone>, a <plane>), a misspelt one, or an empty "
+           "<geometry>: URDF knows <box>, <cylinder>, <sphere> and <mesh>.",
+     fix="Use one of <box size>, <cylinder radius length>, <sphere radius> or <mesh "
+         "filename>; for any other shape, export it as a mesh.")
+rule("geometry-capsule", ERROR, "structure", "A <geometry> is a <capsule>, which ROS 1 "
+     "does not read",
+     symptom="MuJoCo reads it as a capsule; ROS 1's URDF parser stops with \"Unknown "
+             "geometry type 'capsule'\", so RViz and Gazebo never load the robot.",
+     cause="Capsules came into URDF with version 1.1, which only recent urdfdom releases "
+           "read; the SolidWorks exporter never writes them.",
+     fix="For ROS 1, replace the capsule by a <cylinder> (and two <sphere> ends, in "
+         "collisions of their own) or by a mesh.",
+     blocks=PACKAGING)
+
+rule("geom-name-duplicate", WARNING, "structure", "Two <visual> or <collision> elements share "
+     "a name",
+     symptom="MuJoCo prints \"Geom with duplicate name ... encountered in URDF, creating an "
+             "unnamed geom\" and the second shape loses its name, so code that looks it up "
+             "by name finds the first.",
+     cause="A copied <visual> or <collision> block whose name attribute was not changed. "
+           "The exporter writes no names there.",
+     fix="Give each <visual> and <collision> a name of its own, or delete the name "
+         "attributes.")
+
+SHAPES = ("box", "cylinder", "sphere", "mesh")
+VERSION = "1.0"
+
 # The numeric attributes of URDF elements, and how many numbers each one holds.
 NUMERIC = {
     "origin": {"xyz": 3, "rpy": 3},
@@ -122,11 +160,66 @@ def check(ctx) -> None:
     if not links:
         ctx.add("urdf-no-links", f'robot "{ctx.robot.get("name", "")}" has no <link> elements',
                 line=source_line(ctx.robot))
+    _version(ctx)
     _joint_types(ctx, joints)
     edges = _joint_ends(ctx, joints, {link.get("name") for link in links})
     _tree(ctx, links, edges)
     _numbers(ctx)
+    _geometries(ctx, links)
+    _geom_names(ctx, links)
 
+
+def _geom_names(ctx, links) -> None:
+    first: dict[str, object] = {}
+    for link in links:
+        for element in link:
+            name = element.get("name") if element.tag in ("visual", "collision") else None
+            if not name:
+                continue
+            if name in first:
+                ctx.add("geom-name-duplicate", f'the {element.tag} of {owner(element)} is named '
+                        f'"{name}", as is the one at line {source_line(first[name])}',
+                        line=source_line(element))
+            else:
+                first[name] = element
+
+
+def _version(ctx) -> None:
+    version = ctx.robot.get("version")
+    if version is None or version.strip() == VERSION:
+        return
+    parts = version.strip().split(".")
+    said = ("is not in the form x.y" if len(parts) != 2 or not all(p.isdigit() for p in parts)
+            else f"is not {VERSION}, the only version ROS's parser reads")
+    ctx.add("urdf-version", f'<robot version="{_short(version)}">: the version {said}',
+            line=source_line(ctx.robot, "version"))
+
+
+def _geometries(ctx, links) -> None:
+    for link in links:
+        for element in link:
+            if element.tag not in ("visual", "collision"):
+                continue
+            geometry = element.find("geometry")
+            if geometry is None:
+                continue
+            shapes = [s for s in geometry if isinstance(s.tag, str)]
+            known = [s for s in shapes if s.tag in SHAPES]
+            if known:
+                continue
+            where = f"{element.tag} of {owner(geometry)}"
+            if any(s.tag == "capsule" for s in shapes):
+                capsule = next(s for s in shapes if s.tag == "capsule")
+                ctx.add("geometry-capsule", f"the {where} is a <capsule>",
+                        line=source_line(capsule, None))
+            elif shapes:
+                ctx.add("geometry-unknown", f"the {where} is a <{shapes[0].tag}>, not a "
+                        "shape URDF knows", line=source_line(shapes[0], None),
+                        fix=f"replace <{shapes[0].tag}> by a <box>, <cylinder>, <sphere> or "
+                            "<mesh filename=...>")
+            else:
+                ctx.add("geometry-unknown", f"the {where} has an empty <geometry>",
+                        line=source_line(geometry, None))
 
 def _names(ctx, elements, kind: str) -> None:
     first: dict[str, object] = {}

@@ -12,6 +12,7 @@ from packages import EXAMPLES, copy_example, edit, edit_re, fires_at, group_find
 from repository import practice_numbers
 
 from sw2sim import LoadError, load_package
+from sw2sim.loader import world_fixed
 from sw2sim.check import RULES, all_rules, check
 from sw2sim.check.geometry import inertial_of
 
@@ -35,7 +36,14 @@ def _without_inertial(folder: Path) -> Path:
     return package
 
 
-# Each maker breaks front_left_wheel; WHERE gives the text on the line the finding must point
+def _free_base_without_mass(folder: Path) -> Path:
+    """Practice 5's car (no world link: its base floats free) with a base of no mass."""
+    package = copy_example(5, folder)
+    edit(urdf_of(package), 'value="3.05678326799101"', 'value="0"')
+    return package
+
+
+# Each maker breaks front_left_wheel (the free base's rule: the car's base_link); WHERE gives the text on the line the finding must point
 # at (an <inertia> written on one line makes its start unique).
 BATTERY = {
     "inertial-missing": _without_inertial,
@@ -47,7 +55,9 @@ BATTERY = {
     "inertia-triangle": lambda d: _example_1(d, INERTIA, '<inertia ixx="0.001"'),
     "com-outside-geometry": lambda d: _example_1(d, CENTRE, 'xyz="0.5 0 0"'),
     "density-implausible": lambda d: _example_1(d, MASS, 'value="500"'),
+    "root-link-massless": _free_base_without_mass,
 }
+LINK = {"root-link-massless": "base_link"}
 WHERE = {
     "inertial-missing": 'name="front_left_wheel"',
     "inertial-incomplete": '<inertia ixx="0.00839752499701271"',
@@ -57,6 +67,7 @@ WHERE = {
     "inertia-triangle": '<inertia ixx="0.001"',
     "com-outside-geometry": 'xyz="0.5 0 0"',
     "density-implausible": 'value="500"',
+    "root-link-massless": 'name="base_link"',
 }
 
 
@@ -72,7 +83,7 @@ def test_battery_covers_every_inertia_rule():
 def test_rule_fires_at_the_offending_line(rule_id, tmp_path):
     report, hits = fires_at(BATTERY[rule_id](tmp_path), rule_id, WHERE[rule_id])
     assert len(hits) == 1, report.format()
-    assert '"front_left_wheel"' in hits[0].message
+    assert f'"{LINK.get(rule_id, "front_left_wheel")}"' in hits[0].message
     assert f"[{rule_id}]" in report.format()
 
 
@@ -81,9 +92,9 @@ def test_errors_are_what_mujoco_refuses_and_warnings_load(rule_id, tmp_path):
     package = BATTERY[rule_id](tmp_path)
     if RULES[rule_id].severity == "error":
         with pytest.raises(LoadError, match="mjMINVAL|eigenvalues|A \\+ B >= C|missing"):
-            load_package(package).compile()
+            load_package(package, fixed_base=world_fixed(package)).compile()
     else:
-        load_package(package).compile()
+        load_package(package, fixed_base=world_fixed(package)).compile()
 
 
 @pytest.mark.parametrize("n", practice_numbers())

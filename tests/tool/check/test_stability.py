@@ -99,10 +99,24 @@ def test_the_full_check_reports_the_run_in_its_summary_and_json():
 
 # --- what it catches -------------------------------------------------------------------
 
-@pytest.mark.parametrize("rule_id", sorted(BATTERY))
+# The static rules now foresee every load warning MuJoCo gives for a URDF (the mimic of a
+# missing joint is mimic-joint-missing, and convert drops it), so the full check meets
+# sim-warning only for a warning nobody foresaw; the run alone still reports it.
+FORESEEN = {"sim-warning": "mimic-joint-missing"}
+
+
+@pytest.mark.parametrize("rule_id", sorted(set(BATTERY) - set(FORESEEN)))
 def test_each_simulation_rule_is_found_by_the_full_check(rule_id, tmp_path):
     report = check(BATTERY[rule_id](tmp_path))
     assert rule_id in report.rules(), report.format()
+
+
+@pytest.mark.parametrize("rule_id", sorted(FORESEEN))
+def test_a_foreseen_mujoco_warning_is_reported_once_by_its_own_rule(rule_id, tmp_path):
+    report = check(BATTERY[rule_id](tmp_path))
+    assert FORESEEN[rule_id] in report.rules() and rule_id not in report.rules(), \
+        report.format()
+    assert report.stability is not None, "the repaired model was run"
 
 
 def test_a_blow_up_names_the_joint_and_its_line_and_stops_the_run(tmp_path):

@@ -23,6 +23,15 @@ def _example_1(folder: Path, old: str, new: str) -> Path:
     return package
 
 
+BASE_MESH = '<mesh\n          filename="package://example_1/meshes/base_link.STL" />'
+
+
+def _two_visuals_named_alike(folder: Path) -> Path:
+    package = _example_1(folder, "<visual>", '<visual name="shape">')
+    edit(urdf_of(package), "<visual>", '<visual  name="shape">')
+    return package
+
+
 def _roots_several(folder: Path) -> Path:
     package = copy_example(1, folder)
     edit_re(urdf_of(package), r'  <joint\s+name="world_joint".*?</joint>\n', "")
@@ -53,6 +62,12 @@ BATTERY = {
     "roots-several": _roots_several,
     "urdf-no-links": _no_links,
     "number-invalid": lambda d: _example_1(d, 'xyz="0.13 0.18 0"', 'xyz="0.13 0,18 0"'),
+    "urdf-version": lambda d: _example_1(d, '<robot\n  name="example_1"',
+                                         '<robot\n  version="2.0"\n  name="example_1"'),
+    "geometry-unknown": lambda d: _example_1(d, BASE_MESH, '<cone radius="0.05" length="0.1" />'),
+    "geometry-capsule": lambda d: _example_1(d, BASE_MESH,
+                                             '<capsule radius="0.05" length="0.1" />'),
+    "geom-name-duplicate": _two_visuals_named_alike,
 }
 WHERE = {
     "name-missing": 'name=" "',
@@ -65,6 +80,10 @@ WHERE = {
     "roots-several": 'name="base_link"',
     "urdf-no-links": 'name="example_1"',
     "number-invalid": 'xyz="0.13 0,18 0"',
+    "urdf-version": 'version="2.0"',
+    "geometry-unknown": "<cone",
+    "geometry-capsule": "<capsule",
+    "geom-name-duplicate": '<visual  name="shape">',
 }
 
 
