@@ -141,6 +141,8 @@ def _parser() -> argparse.ArgumentParser:
     check = commands.add_parser("check", help="list what is wrong with a package, with fixes",
                                 description=CHECK_HELP, formatter_class=raw)
     check.add_argument("path", metavar="PATH", help="package folder or .urdf file")
+    check.add_argument("--urdf", metavar="NAME", help="which URDF to read, where the package "
+                         "holds several (its file name)")
     check.add_argument("--json", action="store_true", help="print the report as JSON")
     check.add_argument("--no-sim", action="store_true", help="skip the 4 s stability run")
     check.set_defaults(command="check", run=_check)
@@ -149,6 +151,8 @@ def _parser() -> argparse.ArgumentParser:
                                   "meshes, README)",
                                   description=CONVERT_HELP, formatter_class=raw)
     convert.add_argument("path", metavar="PATH", help="package folder or .urdf file")
+    convert.add_argument("--urdf", metavar="NAME", help="which URDF to read, where the package "
+                         "holds several (its file name)")
     convert.add_argument("-o", "--output", metavar="DIR", required=True,
                          help="the folder to write (created if missing)")
     convert.add_argument("--force", action="store_true",
@@ -168,12 +172,16 @@ def _parser() -> argparse.ArgumentParser:
     view = commands.add_parser("view", help="open the package in MuJoCo's viewer",
                                description=VIEW_HELP, formatter_class=raw)
     view.add_argument("path", metavar="PATH", help="package folder or .urdf file")
+    view.add_argument("--urdf", metavar="NAME", help="which URDF to read, where the package "
+                         "holds several (its file name)")
     view.set_defaults(command="view", run=_view)
 
     render = commands.add_parser("render", help="save a picture of the package (no display "
                                  "needed)",
                                  description=RENDER_HELP, formatter_class=raw)
     render.add_argument("path", metavar="PATH", help="package folder or .urdf file")
+    render.add_argument("--urdf", metavar="NAME", help="which URDF to read, where the package "
+                         "holds several (its file name)")
     render.add_argument("-o", "--output", metavar="FILE", required=True, help="the PNG to write")
     render.add_argument("--width", type=_pixels, default=960, help="pixels (default 960)")
     render.add_argument("--height", type=_pixels, default=640, help="pixels (default 640)")
@@ -224,7 +232,7 @@ def _say(message: str) -> None:
 # -- check -----------------------------------------------------------------------------
 def _check(args) -> int:
     from .check import check
-    report = check(args.path, stability=not args.no_sim)
+    report = check(args.path, stability=not args.no_sim, urdf=args.urdf)
     print(report.to_json() if args.json else report.format())
     return report.status
 
@@ -243,7 +251,7 @@ def _convert(args) -> int:
         return EXIT_UNUSABLE
     options = Options(strict=args.strict, lock_default_limits=args.lock_default_limits,
                       density=args.density)
-    checked = check_package(args.path, options=options)
+    checked = check_package(args.path, options=options, urdf=args.urdf)
     report = checked.report
     if report.status == EXIT_UNUSABLE or report.simulation_stoppers:
         print(report.format())
@@ -329,7 +337,7 @@ def _model(args, *, sliders: bool = False, size: tuple[int, int] | None = None):
     from .check import check_package
     from .check.stability import mujoco_warnings
     from .package import LoadError
-    checked = check_package(args.path, stability=False)
+    checked = check_package(args.path, stability=False, urdf=args.urdf)
     report = checked.report
     if report.status == EXIT_UNUSABLE:
         print(report.format())

@@ -12,6 +12,7 @@ Nothing here changes a Package's tree; code that needs to change it works on a c
 from __future__ import annotations
 
 import os
+import re
 from dataclasses import dataclass
 from functools import cached_property
 from pathlib import Path
@@ -52,6 +53,9 @@ class Package:
     robot: etree._Element                   # the URDF's <robot> element
     manifest: etree._Element | None = None  # package.xml's top element, when there is one
     source: str | os.PathLike | None = None  # the path it was read from, as given
+    chosen_because: str = ""                 # why this URDF, when the package holds several
+    other_urdfs: tuple[Path, ...] = ()       # the URDFs (and xacros) not chosen
+    expanded_from: Path | None = None        # the .xacro the URDF was expanded from
 
     @property
     def manifest_file(self) -> Path:
@@ -92,25 +96,20 @@ def as_package(source: str | os.PathLike | Package) -> Package:
     return source if isinstance(source, Package) else find_package(source)
 
 
-def find_package(path: str | os.PathLike) -> Package:
+def find_package(path: str | os.PathLike, urdf: str | None = None) -> Package:
     """Locate the URDF and the package root from a package folder or a .urdf file, and
-    read both package.xml and the URDF; raise LoadError when they cannot be used."""
+    read both package.xml and the URDF; raise LoadError when they cannot be used.
+
+    In a folder holding several URDFs (or xacros), `urdf` names the one to read (its file
+    name, or its path inside the package); without it, `choose_urdf` decides.
+    """
     given = path
     path = Path(path)
     if not path.exists():
         raise LoadError(path, "no such file or folder; give a package folder or a .urdf file",
                         kind="missing")
-    if path.is_dir():
-        root = path
-        candidates = sorted((path / "urdf").glob("*.urdf")) or sorted(path.glob("*.urdf"))
-        if not candidates:
-            raise LoadError(path, "no URDF found; an exported package keeps it in urdf/<name>.urdf",
-                            kind="missing")
-        preferred = [c for c in candidates if c.stem == path.name]
-        urdf = (preferred or candidates)[0]
-    else:
-        urdf = path
-        root = path.parent.parent if path.parent.name == "urdf" else path.parent
+    root = path if path.is_dir() else (
+        path.parent.parent if path.parent.name == "urdf" else path.parent)
     name = root.name
     manifest_file = root / "package.xml"
     if manifest_file.is_symlink() and root.resolve() not in manifest_file.resolve().parents:
@@ -122,9 +121,123 @@ def find_package(path: str | os.PathLike) -> Package:
         found = manifest.findtext("name") if manifest is not None else None
         if found:
             name = found.strip()
-    urdf = urdf.resolve()
-    return Package(root=root.resolve(), name=name, urdf=urdf, robot=_read_urdf(urdf),
-                   manifest=manifest, source=given)
+    because, others = "", ()
+    if path.is_dir():
+        candidates = urdf_candidates(path)
+        if not candidates:
+            raise LoadError(path, "no URDF found; an exported package keeps it in "
+                            "urdf/<name>.urdf", kind="missing")
+        chosen, because = choose_urdf(path, candidates, name, urdf)
+        others = tuple(c for c in candidates if c != chosen)
+    else:
+        chosen = path
+    chosen = chosen.resolve()
+    expanded = None
+    if _is_xacro(chosen):
+        robot, expanded = _read_xacro(chosen, root.resolve(), name), chosen
+    else:
+        robot = _read_urdf(chosen)
+    return Package(root=root.resolve(), name=name, urdf=chosen, robot=robot,
+                   manifest=manifest, source=given, chosen_because=because,
+                   other_urdfs=others, expanded_from=expanded)
+
+
+def _is_xacro(path: Path) -> bool:
+    return path.suffix.lower() == ".xacro"
+
+
+def _stem(path: Path) -> str:
+    """A URDF's robot name from its file name: robot.urdf, robot.urdf.xacro, robot.xacro."""
+    name = path.name
+    for suffix in (".xacro", ".urdf"):
+        if name.lower().endswith(suffix):
+            name = name[:-len(suffix)]
+    return name
+
+
+def urdf_candidates(folder: Path) -> list[Path]:
+    """The URDFs of a package folder, in urdf/ or at its top, then its xacros where no URDF
+    of the same name sits beside them (an expanded URDF is preferred to its source)."""
+    urdfs = sorted((folder / "urdf").glob("*.urdf")) + sorted(folder.glob("*.urdf"))
+    names = {_stem(u) for u in urdfs}
+    xacros = [x for x in sorted((folder / "urdf").glob("*.xacro")) + sorted(folder.glob("*.xacro"))
+              if _stem(x) not in names]
+    return urdfs + xacros
+
+
+def choose_urdf(folder: Path, candidates: list[Path], package: str,
+                wanted: str | None) -> tuple[Path, str]:
+    """The URDF to read, and why: the one asked for, else the one named like the package
+    (package.xml's <name>), else the one the launch files load, else the one named like the
+    folder, else the first by name."""
+    if wanted:
+        hits = [c for c in candidates if wanted in (c.name, _stem(c)) or
+                c.relative_to(folder).as_posix() == wanted.replace("\\", "/")]
+        if not hits:
+            listed = ", ".join(c.relative_to(folder).as_posix() for c in candidates)
+            raise LoadError(folder, f"--urdf {wanted}: no such URDF in the package", kind="missing",
+                            fix=f"choose one of {listed}")
+        return hits[0], "asked for with --urdf"
+    if len(candidates) == 1:
+        return candidates[0], ""
+    for c in candidates:
+        if _stem(c) == package:
+            return c, f'named after the package ("{package}" in package.xml)'
+    launched = _launched(folder, candidates)
+    if launched is not None:
+        return launched
+    for c in candidates:
+        if _stem(c) == folder.name:
+            return c, "named after the folder"
+    return candidates[0], "the first by name"
+
+
+def _launched(folder: Path, candidates: list[Path]) -> tuple[Path, str] | None:
+    """The candidate a launch file of the package loads, and which launch file."""
+    files = [f for pattern in ("*.launch", "*.launch.xml", "*.launch.py", "*.xml")
+             for f in sorted((folder / "launch").glob(pattern))]
+    for launch in dict.fromkeys(files):
+        try:
+            text = launch.read_text(encoding="utf-8", errors="replace")[:1_000_000]
+        except OSError:
+            continue
+        for c in candidates:
+            if re.search(rf"[/\\'\"\s]{re.escape(c.name)}(?![\w.])", text):
+                return c, f"loaded by launch/{launch.name}"
+    return None
+
+
+def _read_xacro(xacro_file: Path, root: Path, name: str) -> etree._Element:
+    """The URDF a .xacro expands to (see sw2sim.xacro_expand), read as any URDF is."""
+    from .xacro_expand import ExpandError, NeedsPackage, expand
+    try:
+        raw = expand(xacro_file, root, name)
+    except NeedsPackage as exc:
+        raise LoadError(xacro_file, f"the xacro needs the package \"{exc.package}\" "
+                        f"($(find {exc.package})), which only a ROS workspace can provide",
+                        kind="xacro-package",
+                        fix=f"expand it where {exc.package} is installed (`xacro "
+                            f"{xacro_file.name} > {_stem(xacro_file)}.urdf`) and give the "
+                            "URDF, or copy what it includes into this package") from None
+    except ExpandError as exc:
+        raise LoadError(xacro_file, f"xacro cannot expand the file: {exc}", kind="xacro",
+                        fix="correct the xacro where xacro's message points, or expand it "
+                            "in ROS and give the URDF") from None
+    except ImportError:
+        raise LoadError(xacro_file, "the package holds a .xacro, and the xacro package is "
+                        "not installed", kind="xacro",
+                        fix="pip install xacro, or expand it first: xacro robot.urdf.xacro "
+                            "> robot.urdf") from None
+    try:
+        robot = xmlsafe.parse_bytes(raw, url=None)
+    except (xmlsafe.DoctypeDeclared, etree.XMLSyntaxError) as exc:
+        raise LoadError(xacro_file, f"the expanded xacro is not well-formed XML ({exc})",
+                        kind="xacro") from None
+    if robot is not None and isinstance(robot.tag, str) and robot.tag.startswith("{"):
+        _drop_namespaces(robot)
+    if robot is None or robot.tag != "robot":
+        raise LoadError(xacro_file, "the xacro does not expand to a <robot>", kind="not-urdf")
+    return robot
 
 
 def _read_manifest(file: Path) -> etree._Element | None:

@@ -31,16 +31,19 @@ def _checks():
             collisions.check]
 
 
-def check(source, *, stability: bool = True, options: Options = Options()) -> Report:
-    """Check a package folder, a .urdf file or a Package; never raises on bad input."""
-    return check_package(source, stability=stability, options=options).report
+def check(source, *, stability: bool = True, options: Options = Options(),
+          urdf: str | None = None) -> Report:
+    """Check a package folder, a .urdf file or a Package; never raises on bad input. `urdf`
+    names the URDF to read where the package holds several."""
+    return check_package(source, stability=stability, options=options, urdf=urdf).report
 
 
-def check_package(source, *, stability: bool = True, options: Options = Options()) -> Context:
+def check_package(source, *, stability: bool = True, options: Options = Options(),
+                  urdf: str | None = None) -> Context:
     """Check as `check` does, and return the Context: its `report`, its `package` as read
     (None when it could not be read) and `repaired_package()`, for a command that goes on
     to use it. `options` are the repairs' (`sw2sim convert`'s flags)."""
-    ctx = open_package(source, options)
+    ctx = open_package(source, options, urdf)
     if ctx.usable:
         for run in _checks():
             run(ctx)

@@ -17,7 +17,7 @@ from lxml import etree
 
 from ..mesh_paths import package_files
 from ..package import LoadError, Package, find_package
-from .findings import FATAL, RULES, Finding, Report, rule
+from .findings import ADVICE, FATAL, RULES, WARNING, Finding, Report, rule
 from .repairs import DEFAULT, Options, Repair, repaired
 
 rule("input-missing", FATAL, "input", "The path does not exist, or holds no URDF",
@@ -47,9 +47,33 @@ rule("not-urdf", FATAL, "input", "The XML is not a URDF",
            "or the file is a xacro that was never expanded.",
      fix="Give the exported .urdf; expand xacro files first with `xacro model.urdf.xacro > model.urdf`.")
 
+rule("xacro-needs-package", FATAL, "input", "The xacro needs another ROS package",
+     symptom="`sw2sim check` stops: the package holds a .xacro, no URDF, and the xacro "
+             "includes or refers to files of another package with $(find ...).",
+     cause="xacro resolves $(find other_package) through a ROS installation; outside ROS only "
+           "the package itself can be found (its own $(find) is resolved to its folder).",
+     fix="Expand the xacro where that package is installed (`xacro robot.urdf.xacro > "
+         "robot.urdf` in a sourced ROS workspace) and check the URDF, or copy what it "
+         "includes into this package.")
+rule("xacro-failed", FATAL, "input", "The xacro cannot be expanded",
+     symptom="`sw2sim check` stops with xacro's own message.",
+     cause="An error in the xacro: an undefined property or macro, a bad expression, a "
+           "missing include, or XML that is not well-formed.",
+     fix="Correct the xacro where xacro's message points (`xacro robot.urdf.xacro` prints "
+         "the same message), or give the expanded URDF.")
+rule("urdf-several", WARNING, "input", "The package holds several URDFs",
+     symptom="The check, convert, view and render read one of them; another may be the "
+             "robot you meant.",
+     cause="A copy (\"robot - Copy.urdf\"), an older export, or the URDF of a world or "
+           "another robot beside the main one.",
+     fix="Nothing, if the one named is the robot. Otherwise give --urdf NAME; or move the "
+         "others out of the package.",
+     blocks=ADVICE)
+
 # How each kind of LoadError the package's reading raises is reported.
 _RULE_OF_KIND = {"syntax": "xml-syntax", "doctype": "xml-doctype", "not-urdf": "not-urdf",
-                 "unreadable": "input-unreadable"}
+                 "unreadable": "input-unreadable", "xacro": "xacro-failed",
+                 "xacro-package": "xacro-needs-package"}
 
 
 class Context:
@@ -96,6 +120,11 @@ class Context:
             file = self.package.urdf
         if line is None and element is not None:
             line = element.sourceline
+        expanded = self.package.expanded_from if self.package is not None else None
+        if expanded is not None and file is not None and Path(file) == self.package.urdf:
+            # The URDF exists only as xacro's output: its lines are not the user's.
+            file, line = expanded, None
+            message += " (in the URDF the xacro expands to)"
         finding = Finding(rule=rule_id, severity=known.severity, message=message,
                           fix=fix or known.fix, file=None if file is None else display(file),
                           line=line, blocks=known.blocks,
@@ -183,9 +212,10 @@ def _real(folder: str) -> Path:
     return Path(folder).resolve()
 
 
-def open_package(source: str | os.PathLike | Package, options: Options = DEFAULT) -> Context:
-    """A Context for the package at `source` (read here unless it is a Package already);
-    input problems become fatal findings."""
+def open_package(source: str | os.PathLike | Package, options: Options = DEFAULT,
+                 urdf: str | None = None) -> Context:
+    """A Context for the package at `source` (read here unless it is a Package already;
+    `urdf` picks one of several URDFs); input problems become fatal findings."""
     ctx = Context(source, options)
     if ctx.package is not None:
         return ctx
@@ -195,7 +225,7 @@ def open_package(source: str | os.PathLike | Package, options: Options = DEFAULT
                 fix="check the path; give the package folder or its .urdf file")
         return ctx
     try:
-        ctx.package = find_package(source)
+        ctx.package = find_package(source, urdf)
     except LoadError as exc:
         if exc.kind == "unsafe":    # "what is wrong; how to fix it"
             problem, _, fix = exc.message.partition("; ")
@@ -205,4 +235,19 @@ def open_package(source: str | os.PathLike | Package, options: Options = DEFAULT
                     line=exc.line, fix=exc.fix)
         return ctx
     ctx.robot = ctx.package.robot
+    _several(ctx)
     return ctx
+
+
+def _several(ctx) -> None:
+    package = ctx.package
+    if not package.other_urdfs or not package.chosen_because:
+        return
+    chosen = package.urdf.relative_to(package.root).as_posix()
+    others = [o.relative_to(package.root).as_posix() if o.is_absolute() and package.root in
+              o.resolve().parents else str(o) for o in package.other_urdfs]
+    ctx.add("urdf-several", f"read {chosen}, {package.chosen_because}; the package also holds "
+            + ", ".join(others), file=package.urdf if package.expanded_from is None
+            else package.expanded_from,
+            fix=f"to read another, add --urdf {Path(others[0]).name} (or another name) to "
+                "the command")

@@ -17,6 +17,7 @@ import pytest
 
 from sw2sim.check import ERROR, FATAL, RULES, all_rules, check
 from packages import copy_example, edit, urdf_of
+from test_package_choice import broken_xacro, xacro_only
 
 HERE = Path(__file__).parent
 
@@ -53,6 +54,8 @@ BATTERY = {
     "xml-syntax": _truncated,
     "xml-doctype": _with_doctype,
     "not-urdf": _not_urdf,
+    "xacro-needs-package": lambda d: xacro_only(d, find="arm_meshes"),
+    "xacro-failed": broken_xacro,
 }
 
 
