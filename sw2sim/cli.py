@@ -239,7 +239,7 @@ def _check(args) -> int:
 
 # -- convert ---------------------------------------------------------------------------
 def _convert(args) -> int:
-    from .check import PACKAGING, Options, check_package
+    from .check import PACKAGING, RULES, Options, check_package
     out = Path(args.output)
     if out.exists() and not out.is_dir():
         _say(f"sw2sim convert: {out} is a file; give a folder to write the model into.")
@@ -258,6 +258,11 @@ def _convert(args) -> int:
         _say("sw2sim convert: not converted; fix the errors above and run it again." + (
             "" if args.strict or not report.repaired else
             " (The problems marked \"Convert repairs it\" need nothing more.)"))
+        masses = [f for f in report.simulation_stoppers
+                  if "--density" in (RULES[f.rule].repair or "")]
+        if masses and args.density is None and not args.strict:
+            _say(f"{len(masses)} of them are masses or inertias: --density KG_PER_M3 (your "
+                 "material's, e.g. 2700 for aluminium) computes them from the meshes instead.")
         return report.status
     if report.findings:
         print(report.format())

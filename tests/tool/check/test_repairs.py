@@ -22,7 +22,7 @@ from hypothesis import strategies as st
 from sw2sim.check import Options, check, check_package
 from sw2sim.check.repairs import balanced
 from sw2sim.cli import main
-from exporter_packages import FOUR_WHEELER_NESTED, ORIGINAL_3_DOF_ARM, write_export
+from exporter_packages import FOUR_WHEELER_NESTED, ORIGINAL_3_DOF_ARM, REAL_EXPORTS, write_export
 from packages import copy_example, edit, edit_re, line_of, urdf_of
 
 FAST = dict(deadline=None, derandomize=True, database=None, max_examples=12)
@@ -382,3 +382,14 @@ def test_a_zero_axis_on_a_joint_with_travel_stays_an_error(tmp_path, capsys):
     [finding] = [f for f in check(package, stability=False).findings if f.rule == "axis-zero"]
     assert finding.repair is None
     assert convert(package, tmp_path / "out", capsys=capsys)[0] == 1
+
+
+@pytest.mark.parametrize("name", sorted(REAL_EXPORTS))
+def test_every_export_of_the_exporters_own_examples_converts(tmp_path, capsys, name):
+    package = write_export(REAL_EXPORTS[name], tmp_path)
+    status, said = convert(package, tmp_path / "out", capsys=capsys)
+    if status:   # only the early export's all-zero inertias stop it, and it says how on
+        assert "--density" in said, said
+        status, said = convert(package, tmp_path / "out", "--density", "2700", capsys=capsys)
+    assert status == 0, said
+    compiled(tmp_path / "out")
