@@ -46,7 +46,8 @@ URDF joins it to a link named `world`, free otherwise, as in Gazebo.
 
 Each finding is one line:
   FILE:LINE: SEVERITY [RULE-ID] what is wrong. Fix: what to do
-followed by a summary. Exit status: 0 no errors (warnings allowed), 1 errors,
+ending with "Convert repairs it: ..." where `sw2sim convert` would repair it in
+the model it writes, followed by a summary. Exit status: 0 no errors (warnings allowed), 1 errors,
 2 the input cannot be used (missing path, not XML, not a URDF).
 
 examples:
