@@ -81,9 +81,9 @@ rule("package-name-mismatch", ERROR, "package", "The mesh paths name a different
      fix="Make the names agree: change <name> in package.xml, or replace the package:// "
          "prefix in every mesh path of the URDF.",
      seen_in=("mujoco#273", "mujoco#1432", "mujoco#1569"), blocks=SIMULATION,
-     repair="when every such path, read inside this package, leads to exactly one of its "
-            "files (ignoring capitals, with \\ read as /), the meshes are read from those "
-            "files.")
+     repair="when every mesh path that names the other package, read inside this one, "
+            "leads to exactly one of its files (ignoring capitals, with \\ read as /), the "
+            "meshes are read from those files.")
 rule("package-folder-name", WARNING, "package", "The folder's name differs from the "
      "package's name",
      symptom="ROS still finds the package by the name in package.xml, but tools outside ROS "
