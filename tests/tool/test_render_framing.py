@@ -51,19 +51,20 @@ def assert_framed(box, width, height):
     assert (right - left) >= 0.5 * width or (bottom - top) >= 0.5 * height, box
 
 
-def raised(tmp_path):
-    """Practice 5's vehicle (a free base) hung 2.5 m below a new root link at the origin:
-    its meshes sit far from where the model's frame is, as in many real exports."""
+def raised(tmp_path, height=2.5):
+    """Practice 5's vehicle (a free base) placed `height` m above a new root link at the
+    origin: its meshes sit far from where the model's frame is, as in many real exports.
+    Below the origin (height < 0), the loader lifts the whole robot onto the floor."""
     package = copy_example(5, tmp_path)
     edit(urdf_of(package), "</robot>", """  <link name="origin_link">
     <inertial><mass value="0.01"/><inertia ixx="1e-6" ixy="0" ixz="0" iyy="1e-6" iyz="0" izz="1e-6"/></inertial>
   </link>
   <joint name="origin_joint" type="fixed">
-    <origin xyz="0 0 2.5" rpy="0 0 0"/>
+    <origin xyz="0 0 {height}" rpy="0 0 0"/>
     <parent link="origin_link"/>
     <child link="base_link"/>
   </joint>
-</robot>""")
+</robot>""".format(height=height))
     return package
 
 
@@ -79,17 +80,24 @@ def test_render_frames_each_practice_robot(tmp_path, n):
     assert_framed(robot_box(shown, hidden), 320, 240)
 
 
-@pytest.mark.parametrize("width, height, azimuth, elevation", [
-    (320, 240, 135, -25), (240, 320, 30, -60), (320, 180, 270, -5)])
-def test_render_frames_a_robot_far_from_its_origin(tmp_path, width, height, azimuth, elevation):
-    package = raised(tmp_path)
+@pytest.mark.parametrize("lift, width, height, azimuth, elevation", [
+    (2.5, 320, 240, 135, -25), (2.5, 240, 320, 30, -60), (2.5, 320, 180, 270, -5),
+    (-0.5, 320, 240, 135, -25)])
+def test_render_frames_a_robot_far_from_its_origin(tmp_path, lift, width, height, azimuth,
+                                                   elevation):
+    package = raised(tmp_path, lift)
     shown, hidden = pictures(package, width, height, azimuth, elevation)
     assert_framed(robot_box(shown, hidden), width, height)
 
 
-def test_the_old_aim_cut_that_robot_off(tmp_path):
+@pytest.mark.parametrize("lift", [2.5, -0.5])
+def test_the_old_aim_cut_that_robot_off(tmp_path, lift):
     """What the test above guards against: aimed at the model's centre, part of the robot
-    falls outside the picture (or it is a speck)."""
-    shown, hidden = pictures(raised(tmp_path), 320, 240, frame=False)
+    falls outside the picture (or it is a speck). The robot lifted onto the floor is cut
+    at the top edge, since that centre was taken before the lift."""
+    shown, hidden = pictures(raised(tmp_path, lift), 320, 240, frame=False)
+    box = robot_box(shown, hidden)
     with pytest.raises(AssertionError):
-        assert_framed(robot_box(shown, hidden), 320, 240)
+        assert_framed(box, 320, 240)
+    if lift < 0:
+        assert box[1] == 0, box
