@@ -41,7 +41,7 @@ help:
 	@echo "make media   regenerate what is stale: example packages, figures, Troubleshooting data, notebooks"
 	@echo "make clean   remove build outputs (keeps .venv and node_modules)"
 
-setup: $(STAMPS)/apt $(STAMPS)/browser $(STAMPS)/venv $(STAMPS)/npm
+setup: $(STAMPS)/apt $(STAMPS)/browser $(STAMPS)/venv $(STAMPS)/npm $(STAMPS)/ros
 
 $(STAMPS)/apt: Makefile
 	@missing=$$(for p in $(APT_PACKAGES); do \
@@ -67,6 +67,33 @@ $(STAMPS)/venv: requirements.txt pyproject.toml
 	@test -x $(PY) || python3 -m venv $(VENV)
 	$(PY) -m pip install -q --disable-pip-version-check -r requirements.txt
 	$(PY) -m pip install -q --disable-pip-version-check --no-deps --no-build-isolation -e .
+	@mkdir -p $(STAMPS) && touch $@
+
+# ROS 1 as Debian ships it (ros_comm 1.15): a master, rospy, roslaunch, the message
+# packages and robot_state_publisher, about 26 MB. The venv reaches Debian's pure-Python
+# ROS modules through a .pth file read last, so its own libraries still come first. Where
+# the distribution has no ROS 1 (Ubuntu 24.04, Debian 13) this says so and goes on; the
+# ROS tests are then skipped with that reason.
+ROS_PACKAGES := python3-rospy python3-roslaunch python3-rostopic python3-rosservice \
+                python3-rosnode rosout python3-std-msgs python3-std-srvs python3-sensor-msgs \
+                python3-rosgraph-msgs python3-tf2-msgs python3-genpy python3-genmsg \
+                ros-std-msgs ros-geometry-msgs ros-robot-state-publisher
+ROS_PTH := zz-debian-ros.pth
+
+$(STAMPS)/ros: Makefile $(STAMPS)/venv
+	@if apt-cache show python3-rospy >/dev/null 2>&1 || \
+	    { $(SUDO) apt-get update -qq >/dev/null 2>&1 && apt-cache show python3-rospy >/dev/null 2>&1; }; then \
+	    missing=$$(for p in $(ROS_PACKAGES); do \
+	        dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null | grep -q '^install ok installed' || echo $$p; done); \
+	    if [ -n "$$missing" ]; then \
+	        echo "Installing ROS 1 from Debian:" $$missing; \
+	        DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq --no-install-recommends $$missing; \
+	    fi; \
+	    site=$$($(PY) -c 'import sysconfig; print(sysconfig.get_path("purelib"))'); \
+	    echo /usr/lib/python3/dist-packages > "$$site/$(ROS_PTH)"; \
+	else \
+	    echo "ROS 1: this distribution ships no ROS 1 packages (python3-rospy); the ROS tests will be skipped."; \
+	fi
 	@mkdir -p $(STAMPS) && touch $@
 
 $(STAMPS)/npm: package.json package-lock.json
