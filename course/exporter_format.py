@@ -416,8 +416,17 @@ def display_launch(name: str) -> str:
 
 
 def gazebo_launch(name: str, extra_nodes: str = "") -> str:
+    # The exporter's file spawns the model from the URDF file and sets no robot_description:
+    # enough for Gazebo alone. The nodes a practice adds need it: robot_state_publisher
+    # exits without it, and gazebo_ros_control reads the transmissions from it.
+    needs_description = any(node in extra_nodes for node in
+                            ("robot_state_publisher", "controller_manager"))
+    description = (f"""  <param
+    name="robot_description"
+    textfile="$(find {name})/urdf/{name}.urdf" />
+""" if needs_description else "")
     return f"""<launch>
-  <include
+{description}  <include
     file="$(find gazebo_ros)/launch/empty_world.launch" />
   <node
     name="tf_footprint_base"
