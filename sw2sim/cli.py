@@ -113,6 +113,20 @@ examples:
 """
 
 
+ROS_HELP = """\
+Runs the package's own gazebo.launch (or --launch FILE) under ROS 1 unchanged, with
+MuJoCo standing in for Gazebo: gazebo_ros (empty_world.launch, spawn_model, the
+/gazebo services), controller_manager's spawner and the ros_control controllers the
+package's YAML names (joint_state_controller, effort_controllers position, velocity and
+effort controllers). It uses the master at ROS_MASTER_URI if one answers, else starts
+its own, and stops everything it started on exit, Ctrl-C or --duration.
+
+examples:
+  sw2sim ros examples/example_3 --duration 20
+  sw2sim ros my_robot --launch my_robot/launch/gazebo.launch
+"""
+
+
 def main(argv: list[str] | None = None) -> int:
     """Run one command; return its exit status (never raise on bad input)."""
     parser = _parser()
@@ -194,6 +208,17 @@ def _parser() -> argparse.ArgumentParser:
                         help="draw shadows (software rendering can speckle them on large models)")
     render.add_argument("--force", action="store_true", help="overwrite FILE if it exists")
     render.set_defaults(command="render", run=_render)
+
+    ros = commands.add_parser("ros", help="run the package's launch file under ROS 1, with "
+                              "MuJoCo in Gazebo's place", description=ROS_HELP,
+                              formatter_class=raw)
+    ros.add_argument("path", metavar="PATH", help="package folder")
+    ros.add_argument("--launch", metavar="FILE", help="the launch file (default: "
+                     "launch/gazebo.launch of the package)")
+    ros.add_argument("--duration", type=float, metavar="S", help="stop after S seconds")
+    ros.add_argument("--realtime", type=float, default=1.0, metavar="F",
+                     help="real-time factor: 1 (default) as in Gazebo, 0 as fast as possible")
+    ros.set_defaults(command="ros", run=_ros)
     return parser
 
 
@@ -303,6 +328,13 @@ def _convert(args) -> int:
           f"{len(result.actuators)} actuator(s)")
     print(f"open it with: python -m mujoco.viewer --mjcf={out / 'scene.xml'}")
     return EXIT_OK
+
+
+# -- ros -----------------------------------------------------------------------------
+def _ros(args) -> int:
+    from .ros.run import run
+    return run(args.path, launch=args.launch, duration=args.duration, realtime=args.realtime,
+               say=lambda text: print(text, flush=True))
 
 
 # -- view and render -------------------------------------------------------------------

@@ -47,6 +47,7 @@ class Ros:
                     # Debian's nodes start with /usr/bin/env python3: theirs, with rospy
                     "PATH": f"/usr/bin{os.pathsep}{os.environ.get('PATH', '')}"}
         self.processes: list[subprocess.Popen] = []
+        self.below: list[int] = []   # what ran below them when they were stopped
         self.logs = home / "processes"
         self.logs.mkdir(exist_ok=True)
 
@@ -68,7 +69,8 @@ class Ros:
         try:
             out, err = process.communicate(timeout=timeout)
         except subprocess.TimeoutExpired:
-            _stop(process)
+            from sw2sim.ros.run import descendants
+            _stop(process, descendants(process.pid))
             out, err = process.communicate()
             raise AssertionError(f"{command[0]} did not finish in {timeout:.0f} s:\n{out}\n{err}")
         return subprocess.CompletedProcess(command, process.returncode, out, err)
@@ -90,40 +92,35 @@ class Ros:
                              + (self.logs / "roscore.log").read_text(errors="replace"))
 
     def stop_all(self) -> None:
+        from sw2sim.ros.run import descendants
         for process in reversed(self.processes):
-            _stop(process)
+            below = descendants(process.pid)
+            self.below.extend(below)
+            _stop(process, below)
 
     def leftovers(self) -> list[int]:
-        """The process groups started here that still have a member."""
+        """The processes started here (and below them) that are still running."""
         alive = []
-        for process in self.processes:
+        for pid in [p.pid for p in self.processes] + self.below:
             try:
-                os.killpg(process.pid, 0)
+                os.kill(pid, 0)
             except ProcessLookupError:
                 continue
             except PermissionError:
                 pass
-            alive.append(process.pid)
+            alive.append(pid)
         return alive
 
 
-def _stop(process: subprocess.Popen) -> None:
-    """SIGINT to the process group (as Ctrl-C), then SIGKILL to what is left."""
-    for sig, wait in ((signal.SIGINT, STOP_TIMEOUT), (signal.SIGKILL, STOP_TIMEOUT)):
+def _stop(process: subprocess.Popen, below: list[int]) -> None:
+    """The process, its group and every process below it, as `sw2sim ros` stops them."""
+    from sw2sim.ros.run import stop
+    stop(process)
+    for pid in below:
         try:
-            os.killpg(process.pid, sig)
-        except ProcessLookupError:
-            break
-        try:
-            process.wait(timeout=wait)
-        except subprocess.TimeoutExpired:
-            continue
-        # The leader is gone; members of its group may not be yet.
-        try:
-            os.killpg(process.pid, signal.SIGKILL)
-        except ProcessLookupError:
+            os.kill(pid, signal.SIGKILL)
+        except (ProcessLookupError, PermissionError):
             pass
-        break
 
 
 @pytest.fixture

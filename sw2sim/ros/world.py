@@ -1,0 +1,399 @@
+"""The simulation node: MuJoCo where gzserver and gazebo_ros_control would run.
+
+One process, started by the stand-in `gazebo_ros/empty_world.launch` (sw2sim.ros.packages),
+gives ROS what the lessons use of Gazebo:
+
+- `/clock` (rosgraph_msgs/Clock) at CLOCK_HZ of simulated time; the launch file sets
+  `use_sim_time`;
+- `/gazebo/spawn_urdf_model` (what `spawn_model` calls), `/gazebo/pause_physics`,
+  `unpause_physics`, `reset_simulation`, `reset_world`, `apply_joint_effort`,
+  `clear_joint_forces` and `get_joint_properties`, with upstream's types;
+- for a URDF with the gazebo_ros_control plugin, its controller manager under
+  `<robotNamespace>/controller_manager/` (load, unload and switch), and the controllers
+  the parameter server describes: `joint_state_controller/JointStateController`
+  (`<ns>/joint_states` at its publish_rate) and `effort_controllers/JointPositionController`
+  (`<ns>/<name>/command` in, `<ns>/<name>/state` out). The position controller's PID
+  becomes a MuJoCo position actuator (kp = p, kv = d, as `sw2sim convert` makes it), its
+  force limited to the joint's effort limit, which is how gazebo_ros_control's default
+  hardware saturates the effort; the integral term is not modelled.
+
+`SW2SIM_REALTIME` sets the real-time factor: 1 (the default) for people, 0 for as fast
+as the machine goes (tests).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import os
+import re
+import sys
+import tempfile
+import threading
+import time
+from pathlib import Path
+
+import mujoco
+import numpy as np
+
+CLOCK_HZ = 200.0          # /clock messages per simulated second
+STATE_HZ = 50.0           # controller state messages per simulated second
+POSITION = "effort_controllers/JointPositionController"
+VELOCITY = "effort_controllers/JointVelocityController"
+EFFORT = "effort_controllers/JointEffortController"
+JOINT_STATE = "joint_state_controller/JointStateController"
+
+
+def find_package_folder(name: str) -> Path | None:
+    """The folder of the ROS package `name` on ROS_PACKAGE_PATH (as roslaunch finds it)."""
+    for entry in os.environ.get("ROS_PACKAGE_PATH", "").split(os.pathsep):
+        if not entry:
+            continue
+        base = Path(entry)
+        for folder in [base, *sorted(p for p in base.glob("*") if p.is_dir())]:
+            manifest = folder / "package.xml"
+            if manifest.is_file() and re.search(rf"<name>\s*{re.escape(name)}\s*</name>",
+                                                manifest.read_text(errors="replace")):
+                return folder
+    return None
+
+
+def package_of(model_xml: str):
+    """A Package around the URDF text that `spawn_model` sent: read from the folder of the
+    package its mesh paths name, with the URDF as sent."""
+    from .. import xmlsafe
+    from ..package import find_package
+    names = re.findall(r"package://([^/\"']+)/", model_xml)
+    folder = find_package_folder(names[0]) if names else None
+    if folder is None:
+        scratch = Path(tempfile.mkdtemp(prefix="sw2sim-spawn-"))
+        (scratch / "robot.urdf").write_text(model_xml)
+        return find_package(scratch / "robot.urdf")
+    package = find_package(folder)
+    robot = xmlsafe.parse_bytes(model_xml.encode())
+    return dataclasses.replace(package, robot=robot)
+
+
+@dataclasses.dataclass
+class Controller:
+    name: str
+    kind: str
+    joint: str | None
+    settings: dict
+    running: bool = False
+    actuator: str | None = None
+    command: float = 0.0
+    publishers: tuple = ()
+    subscriber: object = None
+    next_publish: float = 0.0
+
+
+class World:
+    """The model, its state and the ROS interfaces; `step` advances it."""
+
+    def __init__(self, rospy):
+        self.rospy = rospy
+        self.lock = threading.RLock()
+        self.spec = self.model = self.data = None
+        self.namespace = ""
+        self.paused = False
+        self.controllers: dict[str, Controller] = {}
+        self.efforts: dict[str, tuple[float, float | None]] = {}  # joint -> (effort, until)
+        self.next_clock = 0.0
+
+    # -- the model ---------------------------------------------------------------------
+    def spawn(self, model_xml: str, namespace: str) -> str:
+        from ..loader import load_package
+        package = package_of(model_xml)
+        spec = load_package(package, fixed_base=package.world_fixed)
+        plugin = package.robot.find("gazebo/plugin[@filename='libgazebo_ros_control.so']")
+        ns = plugin.findtext("robotNamespace") if plugin is not None else None
+        with self.lock:
+            self.spec, self.model = spec, spec.compile()
+            self.data = mujoco.MjData(self.model)
+            mujoco.mj_forward(self.model, self.data)
+            self.namespace = "/" + (ns or namespace or "").strip("/")
+            if self.namespace == "/":
+                self.namespace = ""
+        if plugin is not None:
+            self._controller_manager()
+        return f"{package.name}: {self.model.njnt} joint(s), controllers under " \
+               f"{self.namespace or '/'}"
+
+    def joints(self) -> list[int]:
+        moving = (int(mujoco.mjtJoint.mjJNT_HINGE), int(mujoco.mjtJoint.mjJNT_SLIDE))
+        return [j for j in range(self.model.njnt) if int(self.model.jnt_type[j]) in moving]
+
+    def step(self) -> None:
+        with self.lock:
+            if self.model is None or self.paused:
+                return
+            m, d = self.model, self.data
+            d.qfrc_applied[:] = 0
+            for joint, (effort, until) in list(self.efforts.items()):
+                if until is not None and d.time >= until:
+                    del self.efforts[joint]
+                    continue
+                d.qfrc_applied[m.jnt_dofadr[m.joint(joint).id]] += effort
+            for c in self.controllers.values():
+                if c.running and c.actuator is not None:
+                    d.ctrl[m.actuator(c.actuator).id] = c.command
+            mujoco.mj_step(m, d)
+            now = d.time
+        self._publish(now)
+
+    @property
+    def time(self) -> float:
+        return 0.0 if self.data is None else float(self.data.time)
+
+    # -- controllers ---------------------------------------------------------------------
+    def _controller_manager(self) -> None:
+        from controller_manager_msgs.srv import (LoadController, LoadControllerResponse,
+                                                 SwitchController, SwitchControllerResponse,
+                                                 UnloadController, UnloadControllerResponse)
+        rospy, base = self.rospy, f"{self.namespace}/controller_manager"
+        rospy.Service(f"{base}/load_controller", LoadController,
+                      lambda req: LoadControllerResponse(ok=self.load(req.name)))
+        rospy.Service(f"{base}/unload_controller", UnloadController,
+                      lambda req: UnloadControllerResponse(ok=self.unload(req.name)))
+        rospy.Service(f"{base}/switch_controller", SwitchController,
+                      lambda req: SwitchControllerResponse(
+                          ok=self.switch(req.start_controllers, req.stop_controllers)))
+
+    def load(self, name: str) -> bool:
+        rospy = self.rospy
+        key = f"{self.namespace}/{name}"
+        if name in self.controllers or not rospy.has_param(key):
+            rospy.logerr("cannot load controller %s: %s", name,
+                         "loaded already" if name in self.controllers else f"no parameter {key}")
+            return False
+        settings = rospy.get_param(key)
+        kind = settings.get("type")
+        if kind not in (JOINT_STATE, POSITION, VELOCITY, EFFORT):
+            rospy.logerr("controller %s: type %s is not simulated here", name, kind)
+            return False
+        joint = settings.get("joint")
+        if kind != JOINT_STATE:
+            try:
+                self.model.joint(joint)
+            except (KeyError, TypeError):
+                rospy.logerr("controller %s: the model has no joint %r", name, joint)
+                return False
+        self.controllers[name] = Controller(name, kind, joint, settings)
+        return True
+
+    def unload(self, name: str) -> bool:
+        controller = self.controllers.get(name)
+        if controller is None or controller.running:
+            return False
+        del self.controllers[name]
+        return True
+
+    def switch(self, start, stop) -> bool:
+        if any(n not in self.controllers for n in [*start, *stop]):
+            return False
+        for name in stop:
+            self._stop(self.controllers[name])
+        for name in start:
+            self._start(self.controllers[name])
+        return True
+
+    def _start(self, c: Controller) -> None:
+        from sensor_msgs.msg import JointState
+        from std_msgs.msg import Float64
+        from control_msgs.msg import JointControllerState
+        rospy = self.rospy
+        if c.running:
+            return
+        topic = f"{self.namespace}/{c.name}"
+        if c.kind == JOINT_STATE:
+            c.publishers = (rospy.Publisher(f"{self.namespace}/joint_states", JointState,
+                                            queue_size=10),)
+        else:
+            with self.lock:
+                c.actuator = self._actuator(c)
+                j = self.model.joint(c.joint).id
+                c.command = float(self.data.qpos[self.model.jnt_qposadr[j]]) \
+                    if c.kind == POSITION else 0.0
+            c.publishers = (rospy.Publisher(f"{topic}/state", JointControllerState,
+                                            queue_size=10),)
+
+            def command(message, controller=c):
+                controller.command = float(message.data)
+
+            c.subscriber = rospy.Subscriber(f"{topic}/command", Float64, command)
+        c.running = True
+
+    def _stop(self, c: Controller) -> None:
+        c.running = False
+        if c.subscriber is not None:
+            c.subscriber.unregister()
+        for publisher in c.publishers:
+            publisher.unregister()
+
+    def _actuator(self, c: Controller) -> str:
+        """Add the controller's actuator and recompile, keeping the state."""
+        pid = c.settings.get("pid") or {}
+        p, d = float(pid.get("p", 0.0)), float(pid.get("d", 0.0))
+        name = f"ros_{c.name}"
+        act = self.spec.add_actuator(name=name, target=c.joint, trntype=mujoco.mjtTrn.mjTRN_JOINT)
+        if c.kind == POSITION:
+            act.set_to_position(kp=p, kv=d if d > 0 else -1)
+        elif c.kind == VELOCITY:
+            act.set_to_velocity(kv=p)
+        else:
+            act.set_to_motor()
+        j = self.model.joint(c.joint).id
+        if self.model.jnt_actfrclimited[j]:
+            act.forcelimited = mujoco.mjtLimited.mjLIMITED_TRUE
+            act.forcerange = list(self.model.jnt_actfrcrange[j])
+        self.model, self.data = self.spec.recompile(self.model, self.data)
+        return name
+
+    # -- publishing ----------------------------------------------------------------------
+    def _publish(self, now: float) -> None:
+        rospy = self.rospy
+        if now >= self.next_clock:
+            from rosgraph_msgs.msg import Clock
+            self.clock.publish(Clock(clock=rospy.Time.from_sec(now)))
+            self.next_clock = now + 1.0 / CLOCK_HZ
+        for c in list(self.controllers.values()):
+            if not c.running or now < c.next_publish:
+                continue
+            rate = float(c.settings.get("publish_rate", STATE_HZ)) or STATE_HZ
+            c.next_publish = now + 1.0 / rate
+            with self.lock:
+                message = self._joint_states(now) if c.kind == JOINT_STATE else self._state(c, now)
+            c.publishers[0].publish(message)
+
+    def _joint_states(self, now: float):
+        from sensor_msgs.msg import JointState
+        m, d = self.model, self.data
+        joints = self.joints()
+        message = JointState(name=[m.joint(j).name for j in joints],
+                             position=[float(d.qpos[m.jnt_qposadr[j]]) for j in joints],
+                             velocity=[float(d.qvel[m.jnt_dofadr[j]]) for j in joints],
+                             effort=[float(d.qfrc_actuator[m.jnt_dofadr[j]]) for j in joints])
+        message.header.stamp = self.rospy.Time.from_sec(now)
+        return message
+
+    def _state(self, c: Controller, now: float):
+        from control_msgs.msg import JointControllerState
+        m, d = self.model, self.data
+        j = m.joint(c.joint).id
+        position = float(d.qpos[m.jnt_qposadr[j]])
+        pid = c.settings.get("pid") or {}
+        message = JointControllerState(
+            set_point=c.command, process_value=position,
+            process_value_dot=float(d.qvel[m.jnt_dofadr[j]]), error=c.command - position,
+            time_step=float(m.opt.timestep), command=float(d.actuator_force[m.actuator(c.actuator).id]),
+            p=float(pid.get("p", 0.0)), i=float(pid.get("i", 0.0)), d=float(pid.get("d", 0.0)),
+            i_clamp=float(pid.get("i_clamp", 0.0)), antiwindup=bool(pid.get("antiwindup", False)))
+        message.header.stamp = self.rospy.Time.from_sec(now)
+        return message
+
+    # -- /gazebo -------------------------------------------------------------------------
+    def services(self) -> None:
+        from gazebo_msgs.srv import (ApplyJointEffort, ApplyJointEffortResponse,
+                                     GetJointProperties, GetJointPropertiesResponse,
+                                     JointRequest, JointRequestResponse, SpawnModel,
+                                     SpawnModelResponse)
+        from rosgraph_msgs.msg import Clock
+        from std_srvs.srv import Empty, EmptyResponse
+        rospy = self.rospy
+        self.clock = rospy.Publisher("/clock", Clock, queue_size=10)
+
+        def spawn(req):
+            try:
+                said = self.spawn(req.model_xml, req.robot_namespace)
+            except Exception as exc:  # noqa: BLE001  (the caller gets the reason)
+                return SpawnModelResponse(success=False, status_message=str(exc))
+            return SpawnModelResponse(success=True, status_message=said)
+
+        def apply(req):
+            with self.lock:
+                try:
+                    self.model.joint(req.joint_name)
+                except (KeyError, AttributeError):
+                    return ApplyJointEffortResponse(False, f"no joint {req.joint_name!r}")
+                duration = req.duration.to_sec()
+                if duration == 0:
+                    return ApplyJointEffortResponse(True, "duration 0: nothing applied")
+                start = max(req.start_time.to_sec(), self.time)
+                until = None if duration < 0 else start + max(duration, self.model.opt.timestep)
+                self.efforts[req.joint_name] = (req.effort, until)
+            return ApplyJointEffortResponse(True, "")
+
+        def clear(req):
+            with self.lock:
+                self.efforts.pop(req.joint_name, None)
+            return JointRequestResponse()
+
+        def properties(req):
+            with self.lock:
+                try:
+                    j = self.model.joint(req.joint_name).id
+                except (KeyError, AttributeError):
+                    return GetJointPropertiesResponse(success=False,
+                                                      status_message="no such joint")
+                kind = 0 if int(self.model.jnt_type[j]) == int(mujoco.mjtJoint.mjJNT_HINGE) else 2
+                return GetJointPropertiesResponse(
+                    type=kind, damping=[float(self.model.dof_damping[self.model.jnt_dofadr[j]])],
+                    position=[float(self.data.qpos[self.model.jnt_qposadr[j]])],
+                    rate=[float(self.data.qvel[self.model.jnt_dofadr[j]])], success=True)
+
+        def pause(_):
+            self.paused = True
+            return EmptyResponse()
+
+        def unpause(_):
+            self.paused = False
+            return EmptyResponse()
+
+        def reset(_):
+            with self.lock:
+                if self.model is not None:
+                    mujoco.mj_resetData(self.model, self.data)
+                    mujoco.mj_forward(self.model, self.data)
+                    self.next_clock = 0.0
+            return EmptyResponse()
+
+        rospy.Service("/gazebo/spawn_urdf_model", SpawnModel, spawn)
+        rospy.Service("/gazebo/apply_joint_effort", ApplyJointEffort, apply)
+        rospy.Service("/gazebo/clear_joint_forces", JointRequest, clear)
+        rospy.Service("/gazebo/get_joint_properties", GetJointProperties, properties)
+        rospy.Service("/gazebo/pause_physics", Empty, pause)
+        rospy.Service("/gazebo/unpause_physics", Empty, unpause)
+        rospy.Service("/gazebo/reset_simulation", Empty, reset)
+        rospy.Service("/gazebo/reset_world", Empty, reset)
+
+
+def main(argv: list[str] | None = None) -> int:
+    from . import messages
+    messages.ensure()
+    import rospy
+    argv = sys.argv[1:] if argv is None else argv
+    rospy.init_node("gazebo", disable_signals=True)
+    world = World(rospy)
+    world.services()
+    world.paused = "-u" in argv   # gzserver's flag: start paused
+    realtime = float(os.environ.get("SW2SIM_REALTIME", "1") or 0)
+    started, sim_start = time.monotonic(), 0.0
+    try:
+        while not rospy.is_shutdown():
+            if world.model is None or world.paused:
+                time.sleep(0.01)
+                continue
+            world.step()
+            if realtime > 0:
+                ahead = (world.time - sim_start) / realtime - (time.monotonic() - started)
+                if ahead > 0.002:
+                    time.sleep(ahead)
+    except KeyboardInterrupt:
+        pass
+    rospy.signal_shutdown("stopped")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

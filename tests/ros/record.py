@@ -1,0 +1,53 @@
+"""Record, on simulated time, a robot's joint states and its controllers' commands, and
+print them as JSON once the clock passes UNTIL seconds:
+
+    python record.py UNTIL JOINT_STATES_TOPIC COMMAND_TOPIC ...
+
+{"states": [[t, {joint: position}], ...], "commands": {topic: [[t, value], ...]}}
+Run by the ROS tests in a process of its own, as a separate rospy node.
+"""
+
+import json
+import sys
+import time
+
+import rosgraph
+import rospy
+from sensor_msgs.msg import JointState
+from std_msgs.msg import Float64
+
+WALL_TIMEOUT = 90.0
+
+
+def main() -> int:
+    until, states_topic, command_topics = float(sys.argv[1]), sys.argv[2], sys.argv[3:]
+    # rospy reads use_sim_time once, at init_node: wait for the launch file to set it.
+    master, deadline = rosgraph.Master("/recorder"), time.monotonic() + WALL_TIMEOUT
+    while time.monotonic() < deadline:
+        try:
+            if master.hasParam("/use_sim_time") and master.getParam("/use_sim_time"):
+                break
+        except OSError:
+            pass
+        time.sleep(0.1)
+    rospy.init_node("recorder", anonymous=True, disable_signals=True)
+    states, commands = [], {topic: [] for topic in command_topics}
+
+    def state(message):
+        states.append([rospy.get_time(), dict(zip(message.name, message.position))])
+
+    rospy.Subscriber(states_topic, JointState, state)
+    for topic in command_topics:
+        rospy.Subscriber(topic, Float64,
+                         lambda message, topic=topic: commands[topic].append(
+                             [rospy.get_time(), message.data]))
+    deadline = time.monotonic() + WALL_TIMEOUT
+    while rospy.get_time() < until and time.monotonic() < deadline:
+        time.sleep(0.05)
+    print(json.dumps({"states": states, "commands": commands}))
+    rospy.signal_shutdown("done")
+    return 0 if rospy.get_time() >= until else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
