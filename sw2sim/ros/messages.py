@@ -12,8 +12,10 @@ from __future__ import annotations
 
 import hashlib
 import os
+import shutil
 import subprocess
 import sys
+import tempfile
 from pathlib import Path
 
 GENPY = Path("/usr/lib/genpy")
@@ -117,7 +119,15 @@ def ensure() -> Path:
     """Generate the classes unless the cache holds them; put the folder on sys.path."""
     out = folder()
     if not (out / ".done").is_file():
-        _generate(out)
+        # Generated aside and renamed into place, so that processes starting together
+        # never read a half-written folder.
+        out.parent.mkdir(parents=True, exist_ok=True)
+        scratch = Path(tempfile.mkdtemp(prefix=out.name + "-", dir=out.parent))
+        _generate(scratch)
+        try:
+            scratch.rename(out)
+        except OSError:   # another process was first
+            shutil.rmtree(scratch, ignore_errors=True)
     if str(out) not in sys.path:
         sys.path.insert(0, str(out))
     return out
