@@ -36,6 +36,7 @@ REFERENCE = [
     ("02-exporter.md", "/reference/exporter/"),
     ("03-your-own-model.md", "/reference/your-own-model/"),
     ("04-troubleshooting.md", "/reference/troubleshooting/"),
+    ("08-ros-without-gazebo.md", "/reference/ros-without-gazebo/"),
     ("05-ros1-to-ros2.md", "/reference/ros1-to-ros2/"),
     ("06-glossary.md", "/reference/glossary/"),
     ("07-writing-a-lesson.md", "/reference/writing-a-lesson/"),
