@@ -115,6 +115,7 @@ class Robot:
     dynamics: dict[str, Dynamics] = field(default_factory=dict)
     transmissions: list[Transmission] = field(default_factory=list)
     gazebo_plugin: str = ""       # e.g. "libgazebo_ros_control.so", loaded with namespace /<name>
+    joint_state_rate: float = 0.0  # Hz: gazebo_plugins' joint state publisher on /joint_states
     depends: list[str] = field(default_factory=list)   # extra <depend> lines in package.xml
 
     def movable_joints(self) -> list[Joint]:
@@ -246,6 +247,20 @@ def _write_ros_control(w: _Writer, robot: Robot) -> None:
             "    </plugin>",
             "  </gazebo>",
         ]
+    if robot.joint_state_rate:
+        # Without ros_control nothing publishes the joints' states; this plugin of
+        # gazebo_plugins does, on /joint_states.
+        names = ", ".join(j.name for j in robot.movable_joints())
+        w.lines += [
+            "  <gazebo>",
+            '    <plugin name="joint_state_publisher" '
+            'filename="libgazebo_ros_joint_state_publisher.so">',
+            "      <robotNamespace>/</robotNamespace>",
+            f"      <jointName>{names}</jointName>",
+            f"      <updateRate>{g5(robot.joint_state_rate)}</updateRate>",
+            "    </plugin>",
+            "  </gazebo>",
+        ]
 
 
 # --- the other files of the package ----------------------------------------------------------
@@ -346,49 +361,6 @@ endforeach(dir)
 def joint_names_yaml(robot: Robot) -> str:
     names = "".join(f"'{j.name}', " for j in robot.movable_joints())
     return f"controller_joint_names: ['', {names}]\n"
-
-
-POSITION_CONTROLLER = "effort_controllers/JointPositionController"
-ROS_CONTROL_DEPENDS = ["gazebo_ros_control", "controller_manager", "joint_state_controller",
-                       "effort_controllers"]
-
-
-def controllers_yaml(robot: Robot, controllers: dict[str, tuple[str, dict]], state_rate: int,
-                     note: str) -> str:
-    """The joint-names YAML turned into a controller configuration, as the lessons do by hand:
-    a joint state controller and, per joint, an effort-based position controller with its
-    PID gains. `controllers` maps a joint to (controller name, gains)."""
-    entries = "".join(
-        f"\n  {name}:\n    type: {POSITION_CONTROLLER}\n    joint: {joint}\n"
-        f"    pid: {{{', '.join(f'{k}: {v}' for k, v in gains.items())}}}\n"
-        for joint, (name, gains) in controllers.items())
-    return (f"{joint_names_yaml(robot)}\n# {note}\n{robot.name}:\n"
-            f"  joint_state_controller:\n    type: joint_state_controller/JointStateController\n"
-            f"    publish_rate: {state_rate}\n{entries}")
-
-
-def ros_control_nodes(name: str, controllers) -> str:
-    """Launch-file lines that load the controller YAML, start the controllers and publish
-    the robot's frames from the namespaced joint states."""
-    return f"""  <rosparam
-    file="$(find {name})/config/joint_names_{name}.yaml"
-    command="load" />
-  <node
-    name="controller_spawner"
-    pkg="controller_manager"
-    type="spawner"
-    ns="/{name}"
-    args="joint_state_controller {' '.join(controllers)}"
-    output="screen" />
-  <node
-    name="robot_state_publisher"
-    pkg="robot_state_publisher"
-    type="robot_state_publisher">
-    <remap
-      from="/joint_states"
-      to="/{name}/joint_states" />
-  </node>
-"""
 
 
 def display_launch(name: str) -> str:

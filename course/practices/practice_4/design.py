@@ -8,9 +8,9 @@ left end plate, at 2.69 m it is 10 mm from the right one.
 
 from pathlib import Path
 
-from ... import exporter_format
-from ...exporter_format import (ROS_CONTROL_DEPENDS, Joint, Limit, Link, Robot, Safety, Transmission,
-                                ros_control_nodes, write_package)
+from ... import ros_control_files
+from ...exporter_format import Joint, Limit, Link, Robot, Safety, Transmission, write_package
+from ...ros_control_files import ROS_CONTROL_DEPENDS, ros_control_nodes
 from ...parts import Box, Cylinder, Dimension, Material, Part
 from ..shared import mm
 
@@ -111,7 +111,7 @@ STATE_RATE = 20               # Hz, joint_state_controller's publish rate
 
 
 def controllers_yaml() -> str:
-    return exporter_format.controllers_yaml(
+    return ros_control_files.controllers_yaml(
         robot(), {JOINT: (CONTROLLER, GAINS)}, STATE_RATE,
         "Added for Practice 4: the controllers, loaded by launch/gazebo.launch")
 

@@ -12,8 +12,8 @@ Ackermann geometry (Equation 4) are then exactly the distances between the joint
 import math
 from pathlib import Path
 
-from ...exporter_format import (ROS_CONTROL_DEPENDS, Joint, Limit, Link, Robot, Safety, Transmission,
-                                ros_control_nodes, write_package)
+from ...exporter_format import Joint, Limit, Link, Robot, Safety, Transmission, write_package
+from ...ros_control_files import ROS_CONTROL_DEPENDS, ros_control_nodes
 from ...parts import Box, Cylinder, Dimension, Material, Part
 from ..shared import holed_wheel, mm
 
