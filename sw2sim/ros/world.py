@@ -17,6 +17,9 @@ gives ROS what the lessons use of Gazebo:
   force limited to the joint's effort limit, which is how gazebo_ros_control's default
   hardware saturates the effort; the integral term is not modelled.
 
+- gazebo_plugins' `libgazebo_ros_joint_state_publisher.so`: the joints it names on
+  `<robotNamespace>/joint_states`.
+
 `SW2SIM_REALTIME` sets the real-time factor: 1 (the default) for people, 0 for as fast
 as the machine goes (tests).
 """
@@ -117,6 +120,10 @@ class World:
                 self.namespace = ""
         if plugin is not None:
             self._controller_manager()
+        publisher = package.robot.find(
+            "gazebo/plugin[@filename='libgazebo_ros_joint_state_publisher.so']")
+        if publisher is not None:
+            self._joint_state_plugin(publisher, package.name)
         return f"{package.name}: {self.model.njnt} joint(s), controllers under " \
                f"{self.namespace or '/'}"
 
@@ -159,6 +166,19 @@ class World:
         rospy.Service(f"{base}/switch_controller", SwitchController,
                       lambda req: SwitchControllerResponse(
                           ok=self.switch(req.start_controllers, req.stop_controllers)))
+
+    def _joint_state_plugin(self, plugin, model: str) -> None:
+        """gazebo_plugins' joint state publisher: the joints named in <jointName>, at
+        <updateRate>, on <robotNamespace>/joint_states (the model's name by default)."""
+        from sensor_msgs.msg import JointState
+        names = [n.strip() for n in (plugin.findtext("jointName") or "").split(",") if n.strip()]
+        namespace = (plugin.findtext("robotNamespace") or model).strip().strip("/")
+        topic = f"/{namespace}/joint_states" if namespace else "/joint_states"
+        rate = float(plugin.findtext("updateRate") or 100)
+        publisher = Controller("gazebo_joint_state_publisher", JOINT_STATE, None,
+                               {"publish_rate": rate, "joints": names}, running=True)
+        publisher.publishers = (self.rospy.Publisher(topic, JointState, queue_size=10),)
+        self.controllers[publisher.name] = publisher
 
     def load(self, name: str) -> bool:
         rospy = self.rospy
@@ -263,13 +283,16 @@ class World:
             rate = float(c.settings.get("publish_rate", STATE_HZ)) or STATE_HZ
             c.next_publish = now + 1.0 / rate
             with self.lock:
-                message = self._joint_states(now) if c.kind == JOINT_STATE else self._state(c, now)
+                message = (self._joint_states(now, c.settings.get("joints"))
+                           if c.kind == JOINT_STATE else self._state(c, now))
             c.publishers[0].publish(message)
 
-    def _joint_states(self, now: float):
+    def _joint_states(self, now: float, names=None):
         from sensor_msgs.msg import JointState
         m, d = self.model, self.data
         joints = self.joints()
+        if names:
+            joints = [j for j in joints if m.joint(j).name in names]
         message = JointState(name=[m.joint(j).name for j in joints],
                              position=[float(d.qpos[m.jnt_qposadr[j]]) for j in joints],
                              velocity=[float(d.qvel[m.jnt_dofadr[j]]) for j in joints],

@@ -3,7 +3,8 @@ print them as JSON once the clock passes UNTIL seconds:
 
     python record.py UNTIL JOINT_STATES_TOPIC COMMAND_TOPIC ...
 
-{"states": [[t, {joint: position}], ...], "commands": {topic: [[t, value], ...]}}
+{"states": [[t, {joint: position}], ...], "speeds": [[t, {joint: velocity}], ...],
+ "commands": {topic: [[t, value], ...]}}
 Run by the ROS tests in a process of its own, as a separate rospy node.
 """
 
@@ -31,10 +32,11 @@ def main() -> int:
             pass
         time.sleep(0.1)
     rospy.init_node("recorder", anonymous=True, disable_signals=True)
-    states, commands = [], {topic: [] for topic in command_topics}
+    states, speeds, commands = [], [], {topic: [] for topic in command_topics}
 
     def state(message):
         states.append([rospy.get_time(), dict(zip(message.name, message.position))])
+        speeds.append([rospy.get_time(), dict(zip(message.name, message.velocity))])
 
     rospy.Subscriber(states_topic, JointState, state)
     for topic in command_topics:
@@ -44,7 +46,7 @@ def main() -> int:
     deadline = time.monotonic() + WALL_TIMEOUT
     while rospy.get_time() < until and time.monotonic() < deadline:
         time.sleep(0.05)
-    print(json.dumps({"states": states, "commands": commands}))
+    print(json.dumps({"states": states, "speeds": speeds, "commands": commands}))
     rospy.signal_shutdown("done")
     return 0 if rospy.get_time() >= until else 1
 

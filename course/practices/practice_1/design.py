@@ -106,6 +106,9 @@ def robot() -> Robot:
     r.added_links = [Link("world", None)]
     r.added_joints = [Joint("world_joint", "fixed", "world", "base_link", xyz=(0, 0, mm(STAND_HEIGHT)))]
     r.colours = {lk.name: COLOURS["base_link"] if lk.name == "base_link" else COLOURS["wheel"] for lk in links}
+    # The wheels' states on /joint_states, for the custom node page's plot.
+    r.joint_state_rate = 50.0
+    r.depends = ["gazebo_plugins"]
     return r
 
 
