@@ -121,7 +121,7 @@ def build(path: Path, root: Path = ROOT) -> NotebookNode:
         prose += _markdown(body[cursor:start], cursor, page, root)
         cursor = end + 1 if block.attributes is not None else end
         shown = block.data_file or block.include
-        if block.skip is not None:
+        if block.skip is not None or block.ros:
             prose += _skipped(block, shown)
             continue
         if shown:
@@ -165,10 +165,14 @@ def _introduction(front: dict, page: Page) -> str:
     ])
 
 
+ROS_NODE = "it is a ROS 1 node, which the page's commands start under ROS"
+
+
 def _skipped(block: Block, shown: str | None) -> list[str]:
     what = f"The file `{shown}` is" if shown else "This code is"
     fence = "````" if "```" in block.code else "```"
-    return ["", f"> {what} not run in this notebook: {block.skip}. Read it here, and run it "
+    reason = block.skip or ROS_NODE
+    return ["", f"> {what} not run in this notebook: {reason}. Read it here, and run it "
             "where that is available.", "", fence + "python", block.code.rstrip("\n"), fence]
 
 

@@ -33,8 +33,10 @@ def pytest_xdist_make_scheduler(config, log):
 
 
 def pytest_terminal_summary(terminalreporter, exitstatus, config):
-    """How many page snippet blocks ran, and which were skipped and why (tests/course/test_pages.py)."""
+    """How many page snippet blocks ran, and which were skipped and why (tests/course/test_pages.py);
+    how many ROS commands of the pages ran, and which open a window (tests/ros/test_page_blocks.py)."""
     ran, skipped, pages = 0, [], 0
+    ros_ran, windows, ros_pages = 0, [], 0
     for reports in terminalreporter.stats.values():
         for report in reports:
             if getattr(report, "when", None) != "call":
@@ -44,10 +46,20 @@ def pytest_terminal_summary(terminalreporter, exitstatus, config):
                 pages += 1
             ran += properties.get("snippets_ran", 0)
             skipped += properties.get("snippets_skipped", [])
-    if not pages and not skipped:
+            if "ros_blocks_ran" in properties:
+                ros_pages += 1
+            ros_ran += properties.get("ros_blocks_ran", 0)
+            windows += properties.get("ros_windows", [])
+    if not pages and not skipped and not ros_pages:
         return
     terminalreporter.section("page snippets")
     terminalreporter.write_line(f"snippet blocks run: {ran} (in {pages} pages)")
     terminalreporter.write_line(f"skipped snippet blocks: {len(skipped)}")
     for line in skipped:
         terminalreporter.write_line(f"  {line}")
+    if ros_pages:
+        terminalreporter.write_line(f"ROS commands run under the stand-in: {ros_ran} "
+                                    f"(in {ros_pages} pages)")
+        terminalreporter.write_line(f"ROS commands not run, they open a window: {len(windows)}")
+        for line in windows:
+            terminalreporter.write_line(f"  {line}")

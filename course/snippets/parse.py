@@ -1,4 +1,5 @@
-"""Find the ```python blocks of a lesson page, with their page lines and skip reasons.
+"""Find the ```python blocks of a lesson page, with their page lines and skip reasons,
+and the blocks that run under ROS 1 (`data-ros`, python or bash) for course.snippets.ros.
 
 The parse also records where the page's other syntax is, for course.notebooks to turn the
 rest of the page into notebook Markdown: every code listing and its attribute line,
@@ -19,6 +20,9 @@ LANGUAGE = "python"
 # A kramdown block attribute list on a line of its own, possibly inside a blockquote.
 _IAL = re.compile(r"^\s*(?:>\s*)*\{:(?P<body>.*)\}\s*$")
 _SKIP = re.compile(r"""(?<![\w-])data-skip\s*=\s*(?:"(?P<dq>[^"]*)"|'(?P<sq>[^']*)')""")
+_DATA_ROS = re.compile(r"""(?<![\w-])data-ros\s*=\s*(?:"(?P<dq>[^"]*)"|'(?P<sq>[^']*)')""")
+_ROS_LANGUAGES = (LANGUAGE, "bash")
+_ROS_RUNNING = re.compile(r"^ros_running\s*:\s*(?P<value>.+?)\s*(?:#.*)?$")
 _DATA_FILE = re.compile(r"""(?<![\w-])data-file\s*=\s*(?:"(?P<dq>[^"]*)"|'(?P<sq>[^']*)')""")
 # An `{% include_code ... %}` tag anywhere in a line; `args` is what follows the name.
 INCLUDE_CODE = re.compile(r"\{%-?\s*include_code\s+(?P<args>.*?)\s*-?%\}")
@@ -44,6 +48,9 @@ class Block:
     fence: tuple[int, int] = (0, 0)  # 0-based page lines [start, end) of the fence, ``` included
     attributes: int | None = None  # 0-based line of the `{: ...}` line right after the fence
     data_file: str | None = None  # its `data-file="..."`: the file shown above the block
+    # its `data-ros="PACKAGE"`: it runs under ROS 1 in that example package, not in Python
+    ros: str | None = None
+    language: str = LANGUAGE
 
     @property
     def filename(self) -> str:
@@ -83,10 +90,19 @@ class Page:
     # (line of a {% raw %}, line of its {% endraw %}; the page's end if there is none)
     raw_regions: list[tuple[int, int]] = field(default_factory=list)
     html_blocks: list[tuple[int, int]] = field(default_factory=list)  # [start, end) of HTML blocks
+    commands: list[Block] = field(default_factory=list)  # ```bash blocks with data-ros
+    # Front matter `ros_running: roslaunch PKG FILE`: what the page assumes already runs.
+    ros_running: str | None = None
 
     @property
     def runnable(self) -> list[Block]:
-        return [b for b in self.blocks if b.skip is None]
+        """The python blocks the page runner runs."""
+        return [b for b in self.blocks if b.skip is None and b.ros is None]
+
+    @property
+    def ros_blocks(self) -> list[Block]:
+        """The blocks that run under ROS 1, python and bash, in page order."""
+        return sorted([b for b in self.blocks if b.ros] + self.commands, key=lambda b: b.line)
 
     @property
     def skipped(self) -> list[Block]:
@@ -184,6 +200,8 @@ class _Scan:
                     self.error(line, f"snippet_timeout must be a positive number of seconds, not {m['value']!r}")
             elif _NO_LIQUID.match(text):
                 self.liquid = False
+            elif m := _ROS_RUNNING.match(text):
+                self.page.ros_running = m["value"].strip().strip("\"'")
 
     def fences(self) -> None:
         raw = self.page.raw_regions = _raw_regions(self.body)
@@ -202,6 +220,12 @@ class _Scan:
             if ial:
                 self.attached.add(end)
             info = token.info.strip()
+            ros = self.ros_package(ial, info, end)
+            if info == "bash" and ros:
+                code = without_raw_tags(token.content)
+                self.page.commands.append(Block(self.page.path, start + 2, code, fence=(start, end),
+                                                attributes=end, ros=ros, language="bash"))
+                continue
             if info != LANGUAGE:
                 if info and _PYTHON_LIKE.match(info.split()[0]):
                     self.error(
@@ -216,7 +240,29 @@ class _Scan:
             block = self.block(token.content, start, end, protected)
             if block is not None:
                 self.page.blocks.append(replace(block, fence=(start, end), attributes=end if ial else None,
-                                                data_file=self.page.data_files.get(start)))
+                                                data_file=self.page.data_files.get(start), ros=ros))
+
+    def ros_package(self, ial, info: str, end: int) -> str | None:
+        """The package a block's `data-ros="PACKAGE"` names, or None; mistakes are errors."""
+        if not ial or "data-ros" not in ial["body"]:
+            return None
+        r = _DATA_ROS.search(ial["body"])
+        package = (r["dq"] if r["dq"] is not None else r["sq"]).strip() if r else ""
+        if not package or not re.fullmatch(r"[A-Za-z][\w]*", package):
+            self.error(end + 1, 'data-ros names the example package the block runs in: '
+                                '{: data-ros="example_3"}')
+            return None
+        if info not in _ROS_LANGUAGES:
+            self.error(end + 1, f"data-ros is for ```python nodes and ```bash commands, not {info!r}")
+            return None
+        if "data-skip" in ial["body"]:
+            self.error(end + 1, "a block has data-ros (it runs under ROS) or data-skip (it does not), "
+                                "not both")
+            return None
+        if not (self.root / "examples" / package).is_dir():
+            self.error(end + 1, f"data-ros: no package examples/{package}")
+            return None
+        return package
 
     def block(self, content: str, start: int, end: int, protected: bool) -> Block | None:
         """The Block of a python fence over 0-based lines [start, end), or None on error."""

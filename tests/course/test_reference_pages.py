@@ -359,7 +359,7 @@ def test_writing_a_lesson_shows_the_runner_report_it_prints():
     with contextlib.redirect_stdout(out):
         exec(compile(block.code, "writing-a-lesson", "exec"), {"__name__": "sample"})
     lines = out.getvalue().splitlines()
-    assert lines[1] == "_pages/sample.md:11: skipped: needs ROS 1"
+    assert lines[1] == "_pages/sample.md:11: skipped: opens a window"
     assert f"The last line reads `{lines[-1]}`" in text
 
 

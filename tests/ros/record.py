@@ -3,6 +3,8 @@ print them as JSON once the clock passes UNTIL seconds:
 
     python record.py UNTIL JOINT_STATES_TOPIC COMMAND_TOPIC ...
 
+UNTIL is a simulated time, or `+S` for S seconds after the recorder's start.
+
 {"states": [[t, {joint: position}], ...], "speeds": [[t, {joint: velocity}], ...],
  "commands": {topic: [[t, value], ...]}}
 Run by the ROS tests in a process of its own, as a separate rospy node.
@@ -20,8 +22,16 @@ from std_msgs.msg import Float64
 WALL_TIMEOUT = 90.0
 
 
+def _now() -> float:
+    """Simulated time once the clock has ticked (0 before the first /clock message)."""
+    deadline = time.monotonic() + WALL_TIMEOUT
+    while not rospy.get_time() and time.monotonic() < deadline:
+        time.sleep(0.01)
+    return rospy.get_time()
+
+
 def main() -> int:
-    until, states_topic, command_topics = float(sys.argv[1]), sys.argv[2], sys.argv[3:]
+    until, states_topic, command_topics = sys.argv[1], sys.argv[2], sys.argv[3:]
     # rospy reads use_sim_time once, at init_node: wait for the launch file to set it.
     master, deadline = rosgraph.Master("/recorder"), time.monotonic() + WALL_TIMEOUT
     while time.monotonic() < deadline:
@@ -32,6 +42,7 @@ def main() -> int:
             pass
         time.sleep(0.1)
     rospy.init_node("recorder", anonymous=True, disable_signals=True)
+    until = float(until) if not until.startswith("+") else _now() + float(until[1:])
     states, speeds, commands = [], [], {topic: [] for topic in command_topics}
 
     def state(message):

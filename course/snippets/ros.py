@@ -1,0 +1,335 @@
+"""Run a page's ROS blocks (`data-ros`) in page order under ROS 1, with sw2sim's stand-in in
+Gazebo's place, as a reader following the page in terminals would.
+
+A ```bash block is split into its commands (a line ending in `\\` goes on), each run by
+bash in the package's folder:
+
+- `roslaunch`, `rosrun`, `rostopic echo` and a `rostopic pub` without `-1` keep running,
+  as in a terminal of their own. A second `roslaunch` stops the first, as the reader's
+  Ctrl-C does. After a launch the runner waits until the nodes it starts have registered
+  and simulated time runs.
+- Every other command must end, with status 0 (`grep` may say 1: nothing found). Before a
+  command that names a topic or a service, the runner waits until it exists, as a reader
+  waits for Gazebo to come up.
+- A command that opens a window (`rqt_plot`, `rviz`, ...) is not run; it is reported.
+
+A ```python block is a node file of the package (`data-file`): the page's commands start
+it. At the end every node the page shows must be running, what keeps running must still
+run, and no launch may have printed a traceback, an ERROR or a dead process.
+
+The packages are copies in a folder of the caller's, so nothing of the repository changes.
+Everything started runs in a process group of its own and is stopped by `close()`.
+"""
+
+from __future__ import annotations
+
+import re
+import shlex
+import shutil
+import subprocess
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from .parse import Block, Page
+
+WINDOWS = frozenset({"rqt_plot", "rviz", "rqt", "rqt_graph", "rqt_console", "rqt_gui",
+                     "rqt_publisher", "rqt_ez_publisher", "joint_state_publisher_gui"})
+COMMAND_TIMEOUT = 30.0   # s for a command that ends, or for what it names to exist
+SETTLE_TIMEOUT = 30.0    # s for a launch to come up
+QUIET = 1.0              # s without a new node: the launch is up
+# What a launch must not print.
+LAUNCH_FAULTS = re.compile(r"Traceback \(most recent call last\)|process has died|\[ERROR\]"
+                           r"|^ERROR:", re.MULTILINE)
+
+
+class RosBlockError(Exception):
+    """A ROS block that did not do what the page says, at its page line."""
+
+    def __init__(self, location: str, message: str):
+        super().__init__(f"{location}: {message}")
+        self.location = location
+
+
+@dataclass
+class Command:
+    """One command of a ```bash block."""
+
+    text: str
+    location: str   # page.md:line of its first line
+    package: str
+
+    @property
+    def words(self) -> list[str]:
+        try:
+            return shlex.split(self.text, comments=True)
+        except ValueError:
+            return self.text.split()
+
+    @property
+    def program(self) -> str:
+        words = self.words
+        if words[:1] == ["rosrun"] and len(words) >= 3:
+            return words[2]
+        return words[0] if words else ""
+
+    @property
+    def keeps_running(self) -> bool:
+        w = self.words
+        if w[:1] in (["roslaunch"], ["rosrun"], ["roscore"]):
+            return True
+        if w[:2] in (["rostopic", "echo"], ["rostopic", "hz"]):
+            return True
+        return w[:2] == ["rostopic", "pub"] and not {"-1", "--once"} & set(w)
+
+
+def commands(block: Block) -> list[Command]:
+    """The commands of a bash block, with the page line each starts on."""
+    found, text, first = [], "", None
+    for n, line in enumerate(block.code.split("\n"), start=block.line):
+        if first is None:
+            if not line.strip() or line.lstrip().startswith("#"):
+                continue
+            first = n
+        text += (line[:-1].strip() + " ") if line.endswith("\\") else line.strip()
+        if not line.endswith("\\"):
+            found.append(Command(text.strip(), f"{block.page}:{first}", block.ros))
+            text, first = "", None
+    return found
+
+
+@dataclass
+class Running:
+    command: Command
+    process: subprocess.Popen
+    log: Path
+
+
+@dataclass
+class Session:
+    """One page's ROS blocks against one ROS master (ROS_MASTER_URI in `env`)."""
+
+    page: Page
+    root: Path
+    folder: Path          # where the packages are copied and the logs go
+    env: dict[str, str]   # the caller's environment, ROS_MASTER_URI and ROS_HOME included
+    ran: list[str] = field(default_factory=list)
+    windows: list[str] = field(default_factory=list)   # "page.md:line: command" not run
+    running: list[Running] = field(default_factory=list)
+    nodes: list[Block] = field(default_factory=list)
+
+    def __enter__(self) -> Session:
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.close()
+
+    # -- set-up ------------------------------------------------------------------------
+    def prepare(self) -> None:
+        from sw2sim.ros.run import environment
+        packages = sorted({b.ros for b in self.page.ros_blocks})
+        source = self.folder / "src"
+        for name in packages:
+            if not (source / name).exists():
+                shutil.copytree(self.root / "examples" / name, source / name)
+        env = environment(source / packages[0], realtime=0)
+        self.env = {**env, **{k: v for k, v in self.env.items() if k.startswith("ROS_")
+                              and k != "ROS_PACKAGE_PATH"},
+                    # what a terminal shows at once; a file would get it in blocks
+                    "PYTHONUNBUFFERED": "1"}
+        self.logs = self.folder / "logs"
+        self.logs.mkdir(parents=True, exist_ok=True)
+
+    # -- the blocks --------------------------------------------------------------------
+    def run(self) -> None:
+        """Run every ROS block of the page in order; raise RosBlockError at the first fault."""
+        blocks = self.page.ros_blocks
+        if not blocks:
+            return
+        self.prepare()
+        if self.page.ros_running:
+            self.command(Command(self.page.ros_running, f"{self.page.path}:1 (ros_running)",
+                                 blocks[0].ros))
+        for block in blocks:
+            if block.language == "bash":
+                for command in commands(block):
+                    self.command(command)
+            else:
+                self.node(block)
+
+    def node(self, block: Block) -> None:
+        shown = block.data_file or block.include
+        if not shown or not shown.startswith(f"examples/{block.ros}/"):
+            raise RosBlockError(block.location, f"a ROS node block shows a file of examples/"
+                                                f"{block.ros}/ (include_code and data-file)")
+        self.nodes.append(block)
+
+    def command(self, command: Command) -> None:
+        words = command.words
+        if not words:
+            return
+        if command.program in WINDOWS:
+            self.windows.append(f"{command.location}: {command.text} (opens a window)")
+            return
+        self.wait_for_names(command)
+        if command.keeps_running:
+            if words[0] == "roslaunch":
+                self.stop_launches()
+            self.start(command)
+            if words[0] == "roslaunch":
+                self.settle(self.running[-1])
+        else:
+            self.finish(command)
+        self.ran.append(f"{command.location}: {command.text}")
+
+    def start(self, command: Command) -> Running:
+        log = self.logs / f"{len(self.running) + len(self.ran):02d}-{command.program}.log"
+        with open(log, "wb") as out:
+            process = subprocess.Popen(["bash", "-c", command.text], cwd=self.cwd(command),
+                                       env=self.env, stdout=out, stderr=subprocess.STDOUT,
+                                       stdin=subprocess.DEVNULL, start_new_session=True)
+        running = Running(command, process, log)
+        self.running.append(running)
+        return running
+
+    def finish(self, command: Command) -> None:
+        try:
+            done = subprocess.run(["bash", "-c", command.text], cwd=self.cwd(command),
+                                  env=self.env, capture_output=True, text=True,
+                                  timeout=COMMAND_TIMEOUT, start_new_session=True)
+        except subprocess.TimeoutExpired:
+            raise RosBlockError(command.location, f"`{command.text}` did not end within "
+                                                  f"{COMMAND_TIMEOUT:g} s") from None
+        allowed = (0, 1) if command.program == "grep" else (0,)
+        if done.returncode not in allowed:
+            raise RosBlockError(command.location,
+                                f"`{command.text}` exited with {done.returncode}:\n"
+                                f"{(done.stdout + done.stderr)[-1500:]}")
+
+    def cwd(self, command: Command) -> Path:
+        return self.folder / "src" / command.package
+
+    # -- waiting like a reader ---------------------------------------------------------
+    def master(self):
+        import rosgraph
+        return rosgraph.Master("/sw2sim_page_runner", master_uri=self.env["ROS_MASTER_URI"])
+
+    def wait_for_names(self, command: Command) -> None:
+        """Before a command that uses a topic or a service, wait until it exists."""
+        w = command.words
+        if w[:2] == ["rostopic", "pub"]:
+            name, index = _first_name(w[2:]), 1          # someone subscribes
+        elif w[:2] in (["rostopic", "echo"], ["rostopic", "hz"]):
+            name, index = _first_name(w[2:]), 0          # someone publishes
+        elif w[:2] == ["rosservice", "call"]:
+            name, index = _first_name(w[2:]), 2
+        else:
+            return
+        if not name:
+            return
+        deadline = time.monotonic() + COMMAND_TIMEOUT
+        while time.monotonic() < deadline:
+            self.check_running()
+            state = self.master().getSystemState()
+            # `rostopic echo /topic/field` names a field of the topic's message
+            if any((entry[0] == name or name.startswith(entry[0] + "/")) and entry[1]
+                   for entry in state[index]):
+                return
+            time.sleep(0.1)
+        what = ("publisher of", "subscriber on", "service")[index]
+        raise RosBlockError(command.location, f"`{command.text}`: no {what} {name} after "
+                                              f"{COMMAND_TIMEOUT:g} s")
+
+    def settle(self, launch: Running) -> None:
+        """Wait until the launch's nodes have registered (none new for QUIET s) and the
+        simulated clock runs."""
+        deadline = time.monotonic() + SETTLE_TIMEOUT
+        nodes, since = None, time.monotonic()
+        while time.monotonic() < deadline:
+            if launch.process.poll() is not None:
+                raise RosBlockError(launch.command.location,
+                                    f"`{launch.command.text}` ended:\n{_tail(launch.log)}")
+            state = self.master().getSystemState()
+            now = {n for entries in state for _, names in entries for n in names}
+            if now != nodes:
+                nodes, since = now, time.monotonic()
+            clock = any(topic == "/clock" and pubs for topic, pubs in state[0])
+            if clock and time.monotonic() - since >= QUIET:
+                return
+            time.sleep(0.1)
+        raise RosBlockError(launch.command.location, f"`{launch.command.text}` did not come up "
+                                                     f"in {SETTLE_TIMEOUT:g} s:\n{_tail(launch.log)}")
+
+    # -- the end -----------------------------------------------------------------------
+    def check_running(self) -> None:
+        """What keeps running still runs, and no launch printed a fault."""
+        for r in self.running:
+            if r.process.poll() not in (None, 0):
+                raise RosBlockError(r.command.location, f"`{r.command.text}` stopped with "
+                                                        f"{r.process.returncode}:\n{_tail(r.log)}")
+            if r.command.words[0] == "roslaunch":
+                text = r.log.read_text(errors="replace")
+                if m := LAUNCH_FAULTS.search(text):
+                    start = max(0, m.start() - 600)
+                    raise RosBlockError(r.command.location, f"`{r.command.text}` printed a "
+                                                            f"fault:\n{text[start:m.end() + 900]}")
+
+    def check(self) -> None:
+        """At the end: everything still runs, every node the page shows runs, and every
+        `rostopic echo` has printed a message."""
+        self.check_running()
+        from sw2sim.ros.run import descendants
+        lines = []
+        for r in self.running:
+            for pid in [r.process.pid, *descendants(r.process.pid)]:
+                try:
+                    lines.append(Path(f"/proc/{pid}/cmdline").read_bytes().replace(b"\0", b" ")
+                                 .decode(errors="replace"))
+                except OSError:
+                    pass
+        for block in self.nodes:
+            script = Path(block.data_file or block.include).name
+            if not any(script in line for line in lines):
+                raise RosBlockError(block.location, f"the node {script} is not running: no "
+                                                    f"command of the page started it")
+        for r in self.running:
+            if r.command.words[:2] == ["rostopic", "echo"]:
+                deadline = time.monotonic() + COMMAND_TIMEOUT
+                while not r.log.stat().st_size and time.monotonic() < deadline:
+                    time.sleep(0.1)
+                if not r.log.stat().st_size:
+                    raise RosBlockError(r.command.location, f"`{r.command.text}` printed nothing "
+                                                            f"in {COMMAND_TIMEOUT:g} s")
+
+    def stop_launches(self) -> None:
+        from sw2sim.ros.run import stop
+        for r in [r for r in self.running if r.command.words[0] == "roslaunch"]:
+            self.check_running()
+            stop(r.process)
+            self.running.remove(r)
+
+    def close(self) -> None:
+        from sw2sim.ros.run import stop
+        for r in reversed(self.running):
+            stop(r.process)
+
+
+def _first_name(words: list[str]) -> str:
+    for word in words:
+        if word.startswith("/"):
+            return word
+    return ""
+
+
+def _tail(log: Path, size: int = 1500) -> str:
+    try:
+        return log.read_text(errors="replace")[-size:]
+    except OSError:
+        return ""
+
+
+def ros_pages(pages: list[Page]) -> list[Page]:
+    """The pages with ROS blocks."""
+    return [p for p in pages if p.ros_blocks]
+
+
