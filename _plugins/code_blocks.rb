@@ -5,7 +5,8 @@
 #
 #   - the language (`python`, `bash`, ...), or the file the block shows when the block
 #     carries `data-file` (a link when the file is published, e.g. under examples/);
-#   - a "Not run here: <reason>" badge when the block carries `data-skip`.
+#   - a "Not run here: <reason>" badge when the block carries `data-skip`;
+#   - a note that the tests run the block under ROS 1 when it carries `data-ros`.
 #
 # Both attributes come from a kramdown attribute line right after the closing fence:
 #
@@ -36,7 +37,7 @@ module Sw2simSite
         attrs_text = Regexp.last_match(1)
         inner_open = Regexp.last_match(2)
         attrs = attrs_text.scan(ATTRIBUTE).to_h
-        "<div#{attrs_text}>#{header(attrs, site)}#{skip_badge(attrs)}#{inner_open}"
+        "<div#{attrs_text}>#{header(attrs, site)}#{skip_badge(attrs)}#{ros_badge(attrs, site)}#{inner_open}"
       end.gsub(PRE_OPEN, PRE_FOCUSABLE)
     end
 
@@ -68,6 +69,17 @@ module Sw2simSite
       reason = attrs["data-skip"].strip
       detail = reason.empty? ? "" : " #{reason}"
       %(<div class="code-skip"><strong>Not run here:</strong>#{detail}</div>)
+    end
+
+    # The page the note links to explains the stand-in the tests run ROS blocks with.
+    ROS_PAGE = "/reference/ros-without-gazebo/"
+
+    def ros_badge(attrs, site)
+      return "" unless attrs.key?("data-ros")
+
+      href = "#{site.baseurl.to_s.chomp("/")}#{ROS_PAGE}"
+      %(<div class="code-ros">Run by the site's tests under ROS 1, with MuJoCo in Gazebo's place ) +
+        %((<a href="#{href}">how</a>)</div>)
     end
   end
 end

@@ -154,6 +154,23 @@ def test_skip_badges_on_real_pages(site, sources):
         assert badges == marked, f"{path}: {marked} blocks marked data-skip, {badges} badges shown"
 
 
+def test_ros_notes_on_real_pages(site, sources):
+    """A block the tests run under ROS 1 says so, and links to how."""
+    shown = 0
+    for path in sources["pages"]:
+        source = (ROOT / path).read_text(encoding="utf-8")
+        marked = len(re.findall(r"^\s*\{:[^}]*\bdata-ros=", source, re.M))
+        front = sources["pages"][path] or {}
+        if not marked or "permalink" not in front:
+            continue
+        built = built_page(site, front["permalink"]).read_text(encoding="utf-8")
+        notes = re.findall(r'<div class="code-ros">.*?href="([^"]+)"', built)
+        assert len(notes) == marked, f"{path}: {marked} blocks marked data-ros, {len(notes)} notes"
+        assert all((site / h.strip("/") / "index.html").is_file() for h in notes), notes
+        shown += len(notes)
+    assert shown, "no page marks a block with data-ros"
+
+
 def test_no_unrendered_dollar_math(site, sources):
     """kramdown reads math only between $$ and $$; a single $ stays on the page as text."""
     problems = []
