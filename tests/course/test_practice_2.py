@@ -376,7 +376,8 @@ def test_modelling_page_numbers():
     assert f"Ø{design.AXLE_DIAMETER} mm and {design.AXLE_LENGTH} mm long" in text
     assert f"*distance* {design.WHEEL_GAP} mm" in text
     wheel, base, old_base = design.wheel().mass, design.base().mass, practice_1.base().mass
-    assert f"wheel {wheel:.3f} kg" in text and f"base {base:.3f} kg" in text
+    # The exact solids' masses (what SolidWorks shows) are checked in test_tool_facts.py.
+    assert f"prints {wheel:.3f} kg for the wheel" in text and f"base {base:.3f} kg" in text
     assert f"Practice 1's {old_base:.3f} kg" in text and base > old_base
     yaws = {name: design.axle_yaw(*design.SIDES[name]) for name in design.SIDES}
     assert yaws["front_left_wheel"] == yaws["rear_right_wheel"] == -45  # clockwise seen from above

@@ -1,0 +1,123 @@
+"""What the pages say about SolidWorks, the exporter, ROS and MuJoCo, checked where it can
+be: against the designs, the example packages, the exporter's own dialog texts, catkin's
+package check and MuJoCo itself.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+
+import pytest
+from exact_solids import exact_mass
+
+from course.parts import Part
+from course.practices import ROOT, design
+
+PAGES = ROOT / "_pages"
+
+
+def flat(path: str) -> str:
+    """A page's text with its line breaks as spaces, so that a phrase may wrap."""
+    return " ".join((PAGES / path).read_text(encoding="utf-8").split())
+
+
+# ---- masses: SolidWorks weighs the exact solid, the script the 96-facet mesh ---------------
+
+# For each modelling page: the parts it names in "should show", by the words before the mass.
+SHOWN = {
+    1: {"wheel": "wheel", "base": "base"},
+    2: {"wheel": "wheel", "base": "base"},
+    3: {"base": "base", "middle arm": "middle_arm", "end arm": "end_arm"},
+    4: {"bar with end plates": "bar", "block": "block"},
+    5: {"chassis": "chassis", "steering knuckle": "knuckle", "wheel": "wheel",
+        "centre steering link": "steering_link"},
+}
+
+
+def parts():
+    return [(n, part) for n in SHOWN for part in design(f"practice_{n}").parts()]
+
+
+@pytest.mark.parametrize("practice", sorted(SHOWN))
+def test_modelling_pages_give_the_exact_solids_mass_as_solidworks_shows_it(practice):
+    text = flat(f"practice-{practice}/01-modelling.md")
+    shown = text[text.index("should show"):]
+    module = design(f"practice_{practice}")
+    for words, factory in SHOWN[practice].items():
+        mass = exact_mass(getattr(module, factory)())
+        assert re.search(rf"\b{words} {mass:.3f} kg", shown), (words, f"{mass:.3f}")
+
+
+def test_the_car_and_practice_2s_comparison_use_the_exact_masses():
+    p5 = design("practice_5")
+    car = sum(exact_mass(p) for p in (p5.chassis(), p5.steering_link())) \
+        + 2 * exact_mass(p5.knuckle()) + 4 * exact_mass(p5.wheel())
+    assert f"the car weighs {car:.3f} kg" in flat("practice-5/01-modelling.md")
+    p1, p2 = design("practice_1"), design("practice_2")
+    old, new = exact_mass(p1.base()), exact_mass(p2.base())
+    assert new > old and f"Practice 1's {old:.3f} kg" in flat("practice-2/01-modelling.md")
+
+
+def test_the_exact_masses_are_those_of_a_very_fine_mesh():
+    """The sum in exact_solids counts every overlap of these parts once: a mesh of 1024
+    facets per circle (0.0006 % short of a cylinder) weighs the same to 0.003 %."""
+    for practice, part in parts():
+        fine = Part(part.name, part.material, part.features, sections=1024)
+        assert fine.mass == pytest.approx(exact_mass(part), rel=3e-5), (practice, part.title)
+
+
+def test_the_mesh_differs_from_the_solid_by_less_than_a_tenth_of_a_percent():
+    text = flat("practice-1/01-modelling.md")
+    facets = Part.__dataclass_fields__["sections"].default
+    assert facets == 96 and "a prism of 96 flat facets" in text
+    # an inscribed 96-gon has sin(2π/n) / (2π/n) of the circle's area
+    short = 1 - math.sin(2 * math.pi / facets) / (2 * math.pi / facets)
+    assert f"({short:.2%} of the cylinder's volume)".replace("%", " %") in text
+    worst = max(abs(p.mass / exact_mass(p) - 1) for _, p in parts())
+    assert worst < 0.001 and "differ by less than 0.1 %" in text
+
+
+def test_practice_1_says_what_the_script_prints_and_what_solidworks_shows():
+    text = flat("practice-1/01-modelling.md")
+    p1 = design("practice_1")
+    wheel, base = p1.wheel(), p1.base()
+    assert f"The script weighs the STL meshes: wheel {wheel.mass:.3f} kg, base {base.mass:.3f} kg" in text
+    assert f"{base.mass:.3f}" == f"{exact_mass(base):.3f}", "the base: the same to three decimals"
+    grams = (exact_mass(wheel) - wheel.mass) * 1000
+    assert round(grams) == 2 and "about 2 g light" in text
+    assert "look first at the material" in text and "2.7 times too light" in text
+    assert p1.ALUMINIUM.density / 1000 == 2.7
+
+
+def test_the_lesson_package_carries_the_meshes_masses_an_export_the_exact_ones():
+    import yourdfpy
+    p1 = design("practice_1")
+    robot = yourdfpy.URDF.load(str(ROOT / "examples/example_1/urdf/example_1.urdf"), load_meshes=False)
+    urdf_wheel = robot.link_map["front_left_wheel"].inertial.mass
+    wheel = p1.wheel()
+    assert urdf_wheel == pytest.approx(wheel.mass, rel=1e-9) and urdf_wheel < exact_mass(wheel)
+    text = flat("practice-1/01-modelling.md")
+    assert f"carries SolidWorks' exact values, {exact_mass(wheel):.3f} kg for each wheel" in text
+    assert f"carries their values, {urdf_wheel:.3f} kg" in text
+
+
+def test_practice_4s_block_mesh_is_heavier_its_bar_lighter():
+    p4 = design("practice_4")
+    bar, block = p4.bar(), p4.block()
+    assert bar.mass < exact_mass(bar) and 0 < (block.mass - exact_mass(block)) * 1000 < 1
+    text = flat("practice-4/01-modelling.md")
+    assert f"prints {bar.mass:.3f} kg for the bar" in text
+    assert "a fraction of a gram heavier" in text
+
+
+def test_every_script_value_a_modelling_page_quotes_is_the_mesh_mass():
+    quoted = {1: [("wheel", "wheel")], 2: [("wheel", "wheel")], 3: [("middle_arm", "middle arm")],
+              4: [("bar", "bar")], 5: [("wheel", "wheel")]}
+    for practice, items in quoted.items():
+        module = design(f"practice_{practice}")
+        text = flat(f"practice-{practice}/01-modelling.md")
+        for factory, words in items:
+            part = getattr(module, factory)()
+            assert f"{part.mass:.3f}" != f"{exact_mass(part):.3f}"
+            assert f"{part.mass:.3f} kg" in text and f"{exact_mass(part):.3f} kg" in text
