@@ -5,8 +5,11 @@ package check and MuJoCo itself.
 
 from __future__ import annotations
 
+import json
 import math
 import re
+import shutil
+import subprocess
 
 import pytest
 from exact_solids import exact_mass
@@ -121,3 +124,57 @@ def test_every_script_value_a_modelling_page_quotes_is_the_mesh_mass():
             part = getattr(module, factory)()
             assert f"{part.mass:.3f}" != f"{exact_mass(part):.3f}"
             assert f"{part.mass:.3f} kg" in text and f"{exact_mass(part):.3f} kg" in text
+
+
+# ---- package names: catkin warns about capitals, it does not refuse them -------------------
+
+CATKIN_CHECK = """
+import json, sys
+from catkin_pkg.package import InvalidPackage, Package, Person
+result = {}
+for name in sys.argv[1:]:
+    package = Package(name=name, version="0.0.0", package_format=2, description="-",
+                      maintainers=[Person("A", "a@example.com")], licenses=["BSD"])
+    warnings = []
+    try:
+        package.validate(warnings=warnings)
+        result[name] = ["warns" if warnings else "accepts", warnings]
+    except InvalidPackage as exc:
+        result[name] = ["refuses", [str(exc)]]
+print(json.dumps(result))
+"""
+
+
+def catkin_verdicts(*names: str) -> dict:
+    """What catkin_pkg (the package reader of catkin and roslaunch) says of each name."""
+    for python in ("/usr/bin/python3", shutil.which("python3")):
+        if python and subprocess.run([python, "-c", "import catkin_pkg"],
+                                     capture_output=True).returncode == 0:
+            out = subprocess.run([python, "-c", CATKIN_CHECK, *names], capture_output=True,
+                                 text=True, check=True).stdout
+            return json.loads(out)
+    pytest.skip("catkin_pkg is not installed (Debian: python3-catkin-pkg)")
+
+
+def test_catkin_warns_about_capitals_and_refuses_a_space():
+    verdicts = catkin_verdicts("example_1", "Example_1", "Example 1", "example.1")
+    assert verdicts["example_1"][0] == "accepts"
+    assert verdicts["Example_1"][0] == "warns"
+    assert "does not follow the naming conventions" in verdicts["Example_1"][1][0]
+    assert verdicts["Example 1"][0] == verdicts["example.1"][0] == "refuses"
+
+
+@pytest.mark.parametrize("path", ["practice-1/02-exporting.md", "reference/02-exporter.md"])
+def test_the_pages_say_catkin_warns_about_capitals(path):
+    text = flat(path)
+    assert not re.search(r"refuses (capitals|package names with capitals)", text)
+    assert re.search(r"catkin (still )?accepts capital", text) and "warns" in text
+    assert "a space or a dot" in text and "PR #84" in text
+
+
+def test_the_checker_and_its_page_agree_a_capital_is_a_warning():
+    rules = {rule["id"]: rule for group in json.loads((ROOT / "_data/check_rules.json").read_text())["groups"]
+             for rule in group["rules"]}
+    assert rules["package-name-style"]["severity"] == "warning"
+    assert "catkin builds the package but warns" in rules["package-name-style"]["symptom"]
+    assert "a warning" in flat("reference/03-your-own-model.md").split("package-name-style")[1][:40]
