@@ -70,14 +70,18 @@ $(STAMPS)/venv: requirements.txt pyproject.toml
 	@mkdir -p $(STAMPS) && touch $@
 
 # ROS 1 as Debian ships it (ros_comm 1.15): a master, rospy, roslaunch, the message
-# packages and robot_state_publisher, about 26 MB. The venv reaches Debian's pure-Python
-# ROS modules through a .pth file read last, so its own libraries still come first. Where
-# the distribution has no ROS 1 (Ubuntu 24.04, Debian 13) this says so and goes on; the
-# ROS tests are then skipped with that reason.
+# packages and robot_state_publisher, about 26 MB; and what the packages' display.launch
+# opens, with a virtual screen to open it on: rviz, joint_state_publisher and xvfb, about
+# 90 MB more (Qt 5 and OGRE, mostly). Debian 12's joint_state_publisher_gui stops at start
+# (course/rviz_picture.py), so it is left out. The venv reaches Debian's pure-Python ROS
+# modules through a .pth file read last, so its own libraries still come first. Where the
+# distribution has no ROS 1 (Ubuntu 24.04, Debian 13) this says so and goes on; the ROS
+# tests are then skipped with that reason, and the RViz pictures are kept as they are.
 ROS_PACKAGES := python3-rospy python3-roslaunch python3-rostopic python3-rosservice \
                 python3-rosnode rosout python3-std-msgs python3-std-srvs python3-sensor-msgs \
                 python3-rosgraph-msgs python3-tf2-msgs python3-genpy python3-genmsg \
-                ros-std-msgs ros-geometry-msgs ros-robot-state-publisher
+                ros-std-msgs ros-geometry-msgs ros-robot-state-publisher \
+                rviz joint-state-publisher xvfb
 ROS_PTH := zz-debian-ros.pth
 
 $(STAMPS)/ros: Makefile $(STAMPS)/venv

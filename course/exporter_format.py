@@ -16,6 +16,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from .parts import Part
+from .rviz_config import rviz_text
 
 EXPORTER_GREY = (0.792156862745098, 0.819607843137255, 0.933333333333333, 1.0)
 
@@ -420,12 +421,14 @@ def gazebo_launch(name: str, extra_nodes: str = "") -> str:
 """
 
 
-def write_package(robot: Robot, folder: Path, *, gazebo_nodes: str = "", config: str = "") -> list[Path]:
+def write_package(robot: Robot, folder: Path, *, gazebo_nodes: str = "", config: str = "",
+                  rviz: bool = True) -> list[Path]:
     """Write the whole package into `folder` (created if needed); return the files written.
 
     `gazebo_nodes` is added to launch/gazebo.launch and `config` replaces the joint-names YAML
-    (both are what a lesson changes by hand). Generated files are overwritten; anything else
-    in the folder (scripts/, README) is left alone.
+    (both are what a lesson changes by hand); `rviz=False` leaves out urdf.rviz, which
+    display.launch names but the exporter does not write. Generated files are overwritten;
+    anything else in the folder (scripts/, README) is left alone.
     """
     folder = Path(folder)
     name = robot.name
@@ -438,6 +441,8 @@ def write_package(robot: Robot, folder: Path, *, gazebo_nodes: str = "", config:
         f"urdf/{name}.urdf": urdf_text(robot),
         f"urdf/{name}.csv": csv_text(robot),
     }
+    if rviz:
+        files["urdf.rviz"] = rviz_text(robot)
     for link in robot.links:
         files[f"meshes/{link.name}.STL"] = stl_bytes(link.part)
     written = []

@@ -177,6 +177,11 @@ def is_recorded(manifest: Mapping[str, Any], output: str, path: Path,
 
 # Making them ---------------------------------------------------------------------------------
 
+class Unavailable(Exception):
+    """A file that cannot be made on this machine (a program it needs is not installed):
+    it is kept as it is, and stays stale."""
+
+
 def cores() -> int:
     """The CPU cores this process may use."""
     if hasattr(os, "sched_getaffinity"):  # not on macOS

@@ -19,6 +19,10 @@ from typing import Callable
 
 from . import freshness
 from .freshness import Fingerprint, cores  # noqa: F401  (tools/benchmark.py imports cores here)
+# What a figure's code raises when it cannot be made on this machine. It is defined in
+# freshness, which is never run as __main__: under `python -m course.media` this module
+# is, and a class of its own would not be the one the figures' code raises.
+from .freshness import Unavailable
 from .practices import PRACTICES, ROOT
 
 MANIFEST = ROOT / "media" / "manifest.json"
@@ -70,8 +74,9 @@ def all_figures() -> list[Figure]:
     return figures
 
 
-def make_figure(output: str, path: str | Path) -> float:
-    """Make the figure whose output is `output` into `path`; return the seconds it took.
+def make_figure(output: str, path: str | Path) -> float | str:
+    """Make the figure whose output is `output` into `path`; return the seconds it took, or
+    why it cannot be made here (see `Unavailable`; nothing is written then).
 
     It takes names, not a Figure, so that a worker process can run it: `make media` and
     the tests make several figures at once, each in a process of its own.
@@ -79,7 +84,10 @@ def make_figure(output: str, path: str | Path) -> float:
     start = time.perf_counter()
     for fig in all_figures():
         if fig.output == output:
-            fig.make(Path(path))
+            try:
+                fig.make(Path(path))
+            except Unavailable as exc:
+                return str(exc)
             return time.perf_counter() - start
     raise KeyError(f"no figure makes {output}")
 
@@ -122,9 +130,14 @@ def main(argv: list[str] | None = None) -> int:
     interactive = sys.stdout.isatty()
     made = freshness.run_jobs(make_figure, [(f, (f.output, f.path)) for f in todo], args.jobs)
     for i, (fig, seconds) in enumerate(made, start=1):
-        manifest[fig.output] = freshness.manifest_entry(fig.path, fig.input_hash())
-        line = f"{_bar(i, len(todo))} {fig.output} ({seconds:.1f} s)"
-        print(("\r\033[K" + line) if interactive else line, end="" if interactive and i < len(todo) else "\n",
+        if isinstance(seconds, str):   # cannot be made here: kept as it is, still stale
+            line = f"{_bar(i, len(todo))} {fig.output} kept as it is: {seconds}"
+        else:
+            manifest[fig.output] = freshness.manifest_entry(fig.path, fig.input_hash())
+            line = f"{_bar(i, len(todo))} {fig.output} ({seconds:.1f} s)"
+        # A figure kept as it is keeps its line; the others' lines replace each other.
+        last = i == len(todo) or isinstance(seconds, str)
+        print(("\r\033[K" + line) if interactive else line, end="" if interactive and not last else "\n",
               flush=True)
         freshness.write_manifest(MANIFEST, manifest)
     return 0

@@ -35,6 +35,6 @@ def robot() -> Robot:
 def write(root: Path | None = None) -> list[Path]:
     from .. import ROOT
     folder = (root or ROOT / "examples") / PACKAGE
-    written = write_package(robot(), folder)
+    written = write_package(robot(), folder, rviz=False)   # as exported: no urdf.rviz
     (folder / "meshes" / f"{EMPTY_MESH}.STL").write_bytes(EMPTY_STL)
     return written

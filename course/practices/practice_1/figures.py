@@ -7,6 +7,7 @@ import numpy as np
 from sw2sim import load_package
 from ...media import Figure
 from ...plotting import figure, save
+from ...rviz_picture import rviz_picture
 from sw2sim.render import render, save_png
 from .. import load_script
 from . import design
@@ -122,4 +123,5 @@ FIGURES = [
     Figure(f"{MEDIA}/unlocked_base.png", unlocked_strip, SIM, "A base that is not locked"),
     Figure(f"{MEDIA}/base_drift.png", base_drift, SIM, "Locked and free base"),
     Figure(f"{MEDIA}/wheel_velocity.png", wheel_velocity, SIM, "Wheel speed under pulses"),
+    Figure(f"{MEDIA}/rviz.png", rviz_picture(PACKAGE), [PACKAGE], "Practice 1's robot in RViz, as display.launch opens it"),
 ]

@@ -7,6 +7,7 @@ import numpy as np
 from sw2sim import load_package
 from ...media import Figure
 from ...plotting import figure, save
+from ...rviz_picture import rviz_picture
 from sw2sim.render import render, save_png
 from .. import load_script
 from . import design
@@ -242,4 +243,5 @@ FIGURES = [
     Figure(f"{MEDIA}/unlocked_base.png", unlocked_picture, SIM + PULSE, "A base that is not locked"),
     Figure(f"{MEDIA}/free_base.png", free_base_plot, SIM + PULSE + ["examples/example_1"], "Free and locked base"),
     Figure(f"{MEDIA}/friction_velocity.png", friction_velocity, SIM + PULSE, "Wheel speed with and without friction"),
+    Figure(f"{MEDIA}/rviz.png", rviz_picture(PACKAGE), [PACKAGE], "Practice 2's robot in RViz, as display.launch opens it"),
 ]

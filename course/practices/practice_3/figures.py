@@ -8,6 +8,7 @@ import numpy as np
 from sw2sim import load_package
 from ...media import Figure
 from ...plotting import figure, save
+from ...rviz_picture import rviz_picture
 from sw2sim.render import render, save_png
 from .. import load_script
 from . import design
@@ -162,4 +163,5 @@ FIGURES = [
     Figure(f"{MEDIA}/reach.png", reach, SIM, "The arm's reach at its limits"),
     Figure(f"{MEDIA}/velocity_limit.png", velocity_limit, SIM, "Joint speed with and without the limit"),
     Figure(f"{MEDIA}/random_setpoints.png", setpoints, SIM, "Set point, position and error"),
+    Figure(f"{MEDIA}/rviz.png", rviz_picture(PACKAGE), [PACKAGE], "The arm in RViz, as display.launch opens it"),
 ]

@@ -9,6 +9,7 @@ import numpy as np
 from sw2sim import load_package
 from ...media import Figure
 from ...plotting import figure, save
+from ...rviz_picture import rviz_picture
 from sw2sim.render import render, save_png
 from .. import load_script
 from . import design
@@ -222,4 +223,5 @@ FIGURES = [
     Figure(f"{MEDIA}/viewer_sliders.png", viewer_sliders, SIM, "The viewer's slider, sketched"),
     Figure(f"{MEDIA}/velocity_limited_move.png", velocity_limited_move, SIM, "A move set by the velocity limit"),
     Figure(f"{MEDIA}/effort_vs_friction.png", effort_vs_friction, SIM, "Force needed against friction"),
+    Figure(f"{MEDIA}/rviz.png", rviz_picture(PACKAGE), [PACKAGE], "The bar and its block in RViz, as display.launch opens it"),
 ]

@@ -8,6 +8,7 @@ import numpy as np
 from sw2sim import load_package
 from ...media import Figure
 from ...plotting import figure, save
+from ...rviz_picture import rviz_picture
 from sw2sim.render import render, save_png
 from .. import load_script
 from . import design
@@ -188,4 +189,5 @@ FIGURES = [
     Figure(f"{MEDIA}/path_vs_circle.png", path_vs_circle, SIM, "Driven paths against the predicted circles"),
     Figure(f"{MEDIA}/knuckle_angles.png", knuckle_angles, SIM, "Knuckle angles against Equation 4"),
     Figure(f"{MEDIA}/not_ideal.png", not_ideal, SIM, "Equal speeds and parallel steering"),
+    Figure(f"{MEDIA}/rviz.png", rviz_picture(PACKAGE), [PACKAGE], "The vehicle in RViz, as display.launch opens it"),
 ]
