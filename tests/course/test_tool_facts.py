@@ -178,3 +178,34 @@ def test_the_checker_and_its_page_agree_a_capital_is_a_warning():
     assert rules["package-name-style"]["severity"] == "warning"
     assert "catkin builds the package but warns" in rules["package-name-style"]["symptom"]
     assert "a warning" in flat("reference/03-your-own-model.md").split("package-name-style")[1][:40]
+
+
+# ---- what counts towards a link's mass ------------------------------------------------------
+
+EXPORT_PAGES = ["practice-1/02-exporting.md", "reference/02-exporter.md"]
+
+
+@pytest.mark.parametrize("path", EXPORT_PAGES)
+def test_hidden_and_suppressed_parts_are_described_as_they_behave(path):
+    """The exporter weighs the solid bodies of the picked components (SW2URDF's
+    ExportHelperExtension.GetBodies and MassProperty.AddBodies); SolidWorks leaves
+    suppressed components out of mass properties; #101 is about hidden parts not picked."""
+    text = flat(path)
+    assert not re.search(r"hidden or suppressed bodies still count", text, re.I)
+    assert "(#101)" in text and "leaves suppressed components out of mass properties" in text
+
+
+@pytest.mark.parametrize("path", EXPORT_PAGES)
+def test_the_pages_warn_that_the_exporter_ignores_override_mass_properties(path):
+    text = flat(path)
+    assert "edits are sometimes lost" not in text
+    assert "*Override Mass Properties*" in text and "#172" in text
+    assert re.search(r"give it a material", text)
+
+
+def test_the_worked_override_example_of_172():
+    text = flat("reference/02-exporter.md")
+    side, wanted = 0.020, 0.050                      # m, kg: the cube of #172
+    volume = side ** 3
+    assert f"weighs {volume * 1000 * 1000:.0f} g at 1000 kg/m³" in text
+    assert f"{wanted:.3f} kg / {volume * 1e6:.0f} cm³ = {wanted / volume:.0f} kg/m³" in text
