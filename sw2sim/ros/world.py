@@ -11,11 +11,16 @@ gives ROS what the lessons use of Gazebo:
 - for a URDF with the gazebo_ros_control plugin, its controller manager under
   `<robotNamespace>/controller_manager/` (load, unload and switch), and the controllers
   the parameter server describes: `joint_state_controller/JointStateController`
-  (`<ns>/joint_states` at its publish_rate) and `effort_controllers/JointPositionController`
-  (`<ns>/<name>/command` in, `<ns>/<name>/state` out). The position controller's PID
-  becomes a MuJoCo position actuator (kp = p, kv = d, as `sw2sim convert` makes it), its
-  force limited to the joint's effort limit, which is how gazebo_ros_control's default
-  hardware saturates the effort; the integral term is not modelled.
+  (`<ns>/joint_states` at its publish_rate) and the `effort_controllers` position,
+  velocity and effort controllers (`<ns>/<name>/command` in, `<ns>/<name>/state` out).
+  Each drives its joint through one MuJoCo actuator, set at every step to the effort
+  gazebo_ros_control would apply (sw2sim.ros.hardware): the controller's P and D terms,
+  a position command clamped to the joint's limits, then the limits handle its default
+  hardware registers from the URDF. A joint with a `<safety_controller>` gets the soft
+  limits (the speed held under the `<limit velocity>` with k_velocity, and brought down
+  towards a soft limit with k_position), one without it the saturation (plus or minus the
+  effort limit, and no push further past a position or the velocity limit). The PID's
+  integral term is not modelled.
 
 - gazebo_plugins' `libgazebo_ros_joint_state_publisher.so`: the joints it names on
   `<robotNamespace>/joint_states`.
@@ -39,11 +44,11 @@ from pathlib import Path
 import mujoco
 import numpy as np
 
+from . import hardware
+
 CLOCK_HZ = 200.0          # /clock messages per simulated second
 STATE_HZ = 50.0           # controller state messages per simulated second
-POSITION = "effort_controllers/JointPositionController"
-VELOCITY = "effort_controllers/JointVelocityController"
-EFFORT = "effort_controllers/JointEffortController"
+POSITION, VELOCITY, EFFORT = hardware.POSITION, hardware.VELOCITY, hardware.EFFORT
 JOINT_STATE = "joint_state_controller/JointStateController"
 
 
@@ -102,6 +107,7 @@ class World:
         self.paused = False
         self.controllers: dict[str, Controller] = {}
         self.efforts: dict[str, tuple[float, float | None]] = {}  # joint -> (effort, until)
+        self.handles: dict[str, hardware.Handle] = {}
         self.next_clock = 0.0
 
     # -- the model ---------------------------------------------------------------------
@@ -112,6 +118,7 @@ class World:
         plugin = package.robot.find("gazebo/plugin[@filename='libgazebo_ros_control.so']")
         ns = plugin.findtext("robotNamespace") if plugin is not None else None
         with self.lock:
+            self.handles = hardware.handles(package)
             self.spec, self.model = spec, spec.compile()
             self.data = mujoco.MjData(self.model)
             mujoco.mj_forward(self.model, self.data)
@@ -144,7 +151,7 @@ class World:
                 d.qfrc_applied[m.jnt_dofadr[m.joint(joint).id]] += effort
             for c in self.controllers.values():
                 if c.running and c.actuator is not None:
-                    d.ctrl[m.actuator(c.actuator).id] = c.command
+                    self._drive(c)
             mujoco.mj_step(m, d)
             now = d.time
         self._publish(now)
@@ -251,18 +258,32 @@ class World:
         for publisher in c.publishers:
             publisher.unregister()
 
+    def _state_of(self, joint: str) -> tuple[float, float]:
+        m, d = self.model, self.data
+        j = m.joint(joint).id
+        return float(d.qpos[m.jnt_qposadr[j]]), float(d.qvel[m.jnt_dofadr[j]])
+
+    def _law(self, c: Controller) -> hardware.Law:
+        """The controller's own effort law, before the joint's limits."""
+        setpoint = hardware.command(c.kind, c.command, self.handles.get(c.joint))
+        return hardware.controller(c.kind, c.settings.get("pid") or {}, setpoint)
+
+    def _drive(self, c: Controller) -> None:
+        """Set the controller's actuator to the effort law that holds in this state:
+        force = ctrl + biasprm[1] * q + biasprm[2] * v."""
+        q, v = self._state_of(c.joint)
+        law = hardware.effort(self._law(c), self.handles.get(c.joint), q, v)
+        a = self.model.actuator(c.actuator).id
+        self.data.ctrl[a] = law[0]
+        self.model.actuator_biasprm[a, 1:3] = law[1:]
+
     def _actuator(self, c: Controller) -> str:
-        """Add the controller's actuator and recompile, keeping the state."""
-        pid = c.settings.get("pid") or {}
-        p, d = float(pid.get("p", 0.0)), float(pid.get("d", 0.0))
+        """Add the controller's actuator (a force set by _drive at every step) and
+        recompile, keeping the state."""
         name = f"ros_{c.name}"
         act = self.spec.add_actuator(name=name, target=c.joint, trntype=mujoco.mjtTrn.mjTRN_JOINT)
-        if c.kind == POSITION:
-            act.set_to_position(kp=p, kv=d if d > 0 else -1)
-        elif c.kind == VELOCITY:
-            act.set_to_velocity(kv=p)
-        else:
-            act.set_to_motor()
+        act.gaintype, act.biastype = mujoco.mjtGain.mjGAIN_FIXED, mujoco.mjtBias.mjBIAS_AFFINE
+        act.gainprm[0] = 1.0
         j = self.model.joint(c.joint).id
         if self.model.jnt_actfrclimited[j]:
             act.forcelimited = mujoco.mjtLimited.mjLIMITED_TRUE
@@ -301,15 +322,17 @@ class World:
         return message
 
     def _state(self, c: Controller, now: float):
+        """The controller's state message: set point, measured value (a velocity for a
+        velocity controller) and the effort its PID asks for, before the joint's limits."""
         from control_msgs.msg import JointControllerState
-        m, d = self.model, self.data
-        j = m.joint(c.joint).id
-        position = float(d.qpos[m.jnt_qposadr[j]])
+        q, v = self._state_of(c.joint)
+        setpoint = hardware.command(c.kind, c.command, self.handles.get(c.joint))
+        measured, rate = (v, 0.0) if c.kind == VELOCITY else (q, v)
         pid = c.settings.get("pid") or {}
         message = JointControllerState(
-            set_point=c.command, process_value=position,
-            process_value_dot=float(d.qvel[m.jnt_dofadr[j]]), error=c.command - position,
-            time_step=float(m.opt.timestep), command=float(d.actuator_force[m.actuator(c.actuator).id]),
+            set_point=setpoint, process_value=measured, process_value_dot=rate,
+            error=setpoint - measured, time_step=float(self.model.opt.timestep),
+            command=hardware.value(self._law(c), q, v),
             p=float(pid.get("p", 0.0)), i=float(pid.get("i", 0.0)), d=float(pid.get("d", 0.0)),
             i_clamp=float(pid.get("i_clamp", 0.0)), antiwindup=bool(pid.get("antiwindup", False)))
         message.header.stamp = self.rospy.Time.from_sec(now)
