@@ -81,7 +81,7 @@ ROS_PACKAGES := python3-rospy python3-roslaunch python3-rostopic python3-rosserv
                 python3-rosnode rosout python3-std-msgs python3-std-srvs python3-sensor-msgs \
                 python3-rosgraph-msgs python3-tf2-msgs python3-genpy python3-genmsg \
                 ros-std-msgs ros-geometry-msgs ros-robot-state-publisher \
-                rviz joint-state-publisher xvfb
+                rviz joint-state-publisher xvfb catkin
 ROS_PTH := zz-debian-ros.pth
 
 $(STAMPS)/ros: Makefile $(STAMPS)/venv

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import csv
 import io
+import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -341,7 +342,12 @@ for {name} robot</p>
 """
 
 
-def cmakelists(name: str) -> str:
+def cmakelists(name: str, programs: list[str] = ()) -> str:
+    """The exporter's CMakeLists.txt; `programs` (the lesson's ROS nodes, added by hand) are
+    installed as catkin installs Python nodes: where rosrun finds them, #! line fixed."""
+    nodes = "".join(f"\t{p}\n" for p in programs)
+    install_nodes = (f"\ncatkin_install_python(PROGRAMS\n{nodes}"
+                     f"\tDESTINATION ${{CATKIN_PACKAGE_BIN_DESTINATION}})\n" if programs else "")
     return f"""cmake_minimum_required(VERSION 2.8.3)
 
 project({name})
@@ -356,7 +362,17 @@ foreach(dir config launch meshes urdf)
 \tinstall(DIRECTORY ${{dir}}/
 \t\tDESTINATION ${{CATKIN_PACKAGE_SHARE_DESTINATION}}/${{dir}})
 endforeach(dir)
-"""
+{install_nodes}"""
+
+
+def launch_programs(name: str, nodes: str) -> list[str]:
+    """The package's own Python nodes that launch-file lines start, as scripts/ paths."""
+    found = []
+    for node in re.findall(r"<node\b[^>]*>", nodes):
+        pkg, kind = re.search(r'pkg="([^"]*)"', node), re.search(r'type="([^"]*\.py)"', node)
+        if pkg and kind and pkg[1] == name and f"scripts/{kind[1]}" not in found:
+            found.append(f"scripts/{kind[1]}")
+    return found
 
 
 def joint_names_yaml(robot: Robot) -> str:
@@ -433,7 +449,7 @@ def write_package(robot: Robot, folder: Path, *, gazebo_nodes: str = "", config:
     folder = Path(folder)
     name = robot.name
     files: dict[str, str | bytes] = {
-        "CMakeLists.txt": cmakelists(name),
+        "CMakeLists.txt": cmakelists(name, launch_programs(name, gazebo_nodes)),
         "package.xml": package_xml(name, robot.depends),
         f"config/joint_names_{name}.yaml": config or joint_names_yaml(robot),
         "launch/display.launch": display_launch(name),
