@@ -209,3 +209,105 @@ def test_the_worked_override_example_of_172():
     volume = side ** 3
     assert f"weighs {volume * 1000 * 1000:.0f} g at 1000 kg/m³" in text
     assert f"{wanted:.3f} kg / {volume * 1e6:.0f} cm³ = {wanted / volume:.0f} kg/m³" in text
+
+
+# ---- the exporter's dialogs, in their own words ---------------------------------------------
+
+# The texts of the exporter's assembly dialog, as SW2URDF/UI/AssemblyExportForm.Designer.cs
+# of ros/solidworks_urdf_exporter sets them (release 1.6.1 and the current source): step 2,
+# Configure Joint Properties, and step 3, Configure Link Properties. Spelling as in the
+# source, "Course" included.
+ASSEMBLY_DIALOG = {
+    "Configure Joint Properties", "Parent Link:", "Child Link:", "Joint Name", "Joint Type",
+    "Coordinates", "Axis", "Origin", "Position (m)", "Orientation (rad)", "Roll", "Pitch",
+    "Yaw", "x", "y", "z", "Limit", "lower (rad)", "upper (rad)", "effort (N-m)",
+    "velocity (m/s)", "Calibration", "rising", "falling", "Dynamics", "damping (N*m*s*rad^-1)",
+    "friction (N*m)", "Safety Controller", "soft lower limit (rad)", "soft upper limit (rad)",
+    "k position", "k velocity", "Mimic Other Joint", "Joint to Mimic:", "Multiplier",
+    "Offset (rad)", "Next", "Cancel",
+    "Configure Link Properties", "Inertial", "Origin (m)", "Mass (kg)",
+    "Moment of Inertia (Kg * m^-2)", "ixx", "ixy", "ixz", "iyy", "iyz", "izz",
+    "Visual and Collision Meshes", "Mesh Detail", "Course", "Fine", "Material name", "Color",
+    "Red", "Green", "Blue", "Alpha", "Texture (Replaces Color)", "Browse...", "Previous",
+    "Export URDF and Meshes...", "Export URDF Only...",
+}
+# Added to the same dialog after release 1.6.1 (#154).
+ASSEMBLY_DIALOG_AFTER_1_6_1 = {"Mesh Format", "STL (grayscale)", "3dxml (color)"}
+# Step 1, the panel beside the feature tree: the captions SW2URDF/URDFExport/
+# ExportPropertyManager.cs gives its controls, and the choices of its boxes
+# (ExportHelperExtension.cs compares with "Automatically Generate" and "Automatically Detect").
+PROPERTY_MANAGER = {
+    "URDF Exporter", "Configure and Organize Links", "Parent Link", "Link Name", "Joint Name",
+    "Global Origin Coordinate System", "Reference Coordinate System", "Reference Axis",
+    "Joint Type", "Link Components", "Number of child links", "Load Configuration...",
+    "Compute Mass and Inertia", "Compute Visual and Collision", "Compute Joint Kinematics",
+    "Compute Joint Limits", "Preview and Export...", "Link Tree", "Add Child Link", "Remove",
+    "Automatically Generate", "Automatically Detect",
+}
+# The add-in's name in Tools > Add-Ins and its menu item (SW2URDF/SW/SwAddin.cs).
+ADD_IN = {"SW2URDF", "Tools > Export as URDF", "File > Export as URDF"}
+# Only in the window for exporting a single part (SW2URDF/UI/PartExportForm.Designer.cs).
+PART_DIALOG_ONLY = {"Visual Mesh Detail", "Collision Mesh Detail", "Visual", "Collision"}
+
+# Italics on these pages that are not the exporter's words: SolidWorks' own menus and
+# windows, MuJoCo's and URDF's terms, and plain emphasis.
+NOT_THE_EXPORTERS = {
+    "Tools > Add-Ins", "Evaluate > Mass Properties", "Override Mass Properties",
+    "continuous", "revolute", "slide", "where", "which way", "no", "is", "direction",
+}
+
+DIALOG_PAGES = ["practice-1/02-exporting.md", "practice-2/02-exporting.md",
+                "practice-3/02-exporting.md", "practice-4/02-exporting.md",
+                "practice-5/02-exporting.md", "reference/02-exporter.md"]
+
+
+def without_unit(label: str) -> str:
+    """A label as a sentence may name it: 'friction (N*m)' -> 'friction', 'Parent Link:' ->
+    'Parent Link'; a unit in brackets that is part of the name stays ('Texture (Replaces Color)')."""
+    label = label.rstrip(":")
+    return re.sub(r" \((?:m|rad|kg|N-m|m/s|N\*m|N\*m\*s\*rad\^-1)\)$", "", label)
+
+
+def italics(path: str) -> list[str]:
+    """The *italic* phrases of a page's prose and tables, captions and code left out."""
+    text = (PAGES / path).read_text(encoding="utf-8")
+    text = re.sub(r"^[ \t]*(`{3,}).*?^[ \t]*\1", "", text, flags=re.S | re.M)
+    text = re.sub(r"\$\$.*?\$\$", "", text, flags=re.S)
+    text = re.sub(r"`[^`\n]*`", "", text)
+    text = re.sub(r"^\*[^*\s].*?\*[ \t]*$", "", text, flags=re.S | re.M)   # figure captions
+    text = re.sub(r"\*\*[^*]+\*\*", "", text)
+    return [" ".join(m.split()) for m in re.findall(r"(?<![*\w])\*([^*\s](?:[^*]*?[^*\s])?)\*(?![*\w])", text)]
+
+
+def test_the_label_lists_name_each_text_once_as_the_source_does():
+    assert "Visual Mesh Detail" not in ASSEMBLY_DIALOG and "Mesh Detail" in ASSEMBLY_DIALOG
+    assert "Course" in ASSEMBLY_DIALOG and "Coarse" not in ASSEMBLY_DIALOG
+
+
+@pytest.mark.parametrize("path", DIALOG_PAGES)
+def test_the_exporters_words_in_italics_are_its_dialogs_words(path):
+    known = {without_unit(label) for label in
+             ASSEMBLY_DIALOG | ASSEMBLY_DIALOG_AFTER_1_6_1 | PROPERTY_MANAGER | ADD_IN}
+    unknown = [name for name in italics(path) if name not in known | NOT_THE_EXPORTERS]
+    assert not unknown, f"italic names that no exporter dialog shows: {unknown}"
+
+
+@pytest.mark.parametrize("path", ["practice-1/02-exporting.md", "reference/02-exporter.md"])
+def test_the_mesh_detail_field_has_the_assembly_dialogs_name(path):
+    text = flat(path)
+    assert "Mesh quality" not in text and "*Visual Mesh Detail*" not in text
+    assert "*Mesh Detail*" in text and "*Visual and Collision Meshes*" in text
+    assert "*Course*" in text and "*Fine*" in text
+
+
+def test_the_exporter_reference_gives_the_link_window_no_collision_fields():
+    text = (PAGES / "reference/02-exporter.md").read_text(encoding="utf-8")
+    step_3 = text[text.index("## Step 3"):text.index("### Mass and inertia")]
+    rows = [line.split("|")[1].strip() for line in step_3.splitlines()
+            if line.startswith("| ") and not line.startswith("| Group")]
+    assert set(rows) == {"Inertial", "Visual and Collision Meshes"}
+    assert "There are no collision fields" in " ".join(step_3.split())
+    # the one place the part window's name may appear: where it is said to be the part window's
+    for name in PART_DIALOG_ONLY - {"Visual", "Collision"}:
+        for hit in re.finditer(re.escape(name), text):
+            assert "single part" in text[hit.start() - 120:hit.start()], name
