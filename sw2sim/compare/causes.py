@@ -213,13 +213,15 @@ def mass(mine: float, ref: float, density_mine: float | None,
         if abs(density_mine / density_ref - 1) <= tol.DENSITY:
             return ("mass-volume", f"{by}; the same density, {density_ref:.0f} kg/m^3",
                     f"the part's volume is {volume_ratio - 1:+.1%}: a dimension or feature "
-                    "(a hole, a fillet, a chamfer) differs from the drawing, or a hidden or "
-                    "suppressed body is counted (exporter issue #101)")
+                    "(a hole, a fillet, a chamfer) differs from the drawing, or the link's "
+                    "Link Components hold a part more or less than the reference's (a part "
+                    "in no link adds its mass to none, exporter issue #101)")
         found = tol.material(density_mine)
         if found == tol.MATERIALS[1000]:
             return ("mass-material", f"{by}: {density_mine:.0f} kg/m^3 against "
                     f"{density_ref:.0f}", f"no material was applied to the part, so SolidWorks "
-                    f"used its default density 1000 kg/m^3; {apply}")
+                    f"used its default density 1000 kg/m^3 (a mass typed in Override Mass "
+                    f"Properties never reaches the URDF, #172); {apply}")
         return ("mass-material", f"{by}: {density_mine:.0f} kg/m^3 against {density_ref:.0f}",
                 f"the part's material is {found or 'not a common one'}"
                 f" ({density_mine:.0f} kg/m^3); {apply}")

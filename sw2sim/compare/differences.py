@@ -165,7 +165,7 @@ class Comparer:
         ref, mine, found = self.ref, self.mine, self.found
         if found.world == "missing":
             joint = ref.above[ref.base]
-            self.add("world-missing", 'link "world"', summary=(
+            self.add("world-missing", f'link "{ref.world}"', summary=(
                 f'missing in yours; the reference bolts "{ref.base}" to the world with the '
                 f'fixed joint "{joint.name}" at xyz {vec(joint.origin[:3, 3])}'),
                 cause="without it Gazebo lets the robot fall free, while MuJoCo welds a "
