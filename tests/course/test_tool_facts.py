@@ -10,6 +10,7 @@ import math
 import re
 import shutil
 import subprocess
+import sys
 
 import pytest
 from exact_solids import exact_mass
@@ -311,3 +312,49 @@ def test_the_exporter_reference_gives_the_link_window_no_collision_fields():
     for name in PART_DIALOG_ONLY - {"Visual", "Collision"}:
         for hit in re.finditer(re.escape(name), text):
             assert "single part" in text[hit.start() - 120:hit.start()], name
+
+
+# ---- MuJoCo's viewer and an exported package ------------------------------------------------
+
+def fresh_python(code: str) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT)
+
+
+def test_import_mujoco_alone_does_not_load_the_viewer():
+    run = fresh_python("import mujoco\nmujoco.viewer")
+    assert run.returncode != 0 and "AttributeError" in run.stderr
+    assert fresh_python("import mujoco.viewer\nmujoco.viewer.launch").returncode == 0
+    text = (PAGES / "practice-1/04-testing-and-modifying.md").read_text(encoding="utf-8")
+    launch = text.index("mujoco.viewer.launch(model)")
+    assert "import mujoco.viewer" in text[:launch] and "AttributeError" in text[:launch]
+
+
+def test_the_viewers_command_line_takes_an_mjcf_file():
+    run = subprocess.run([sys.executable, "-m", "mujoco.viewer", "--help"], capture_output=True,
+                         text=True, timeout=60)
+    assert run.returncode == 0 and "--mjcf" in run.stdout
+    assert "python -m mujoco.viewer --mjcf=" in (PAGES / "practice-1/04-testing-and-modifying.md").read_text()
+
+
+def test_mujoco_cannot_open_an_exported_urdf_but_can_open_the_converted_folder(tmp_path):
+    import mujoco
+    from sw2sim.convert import convert
+    urdf = ROOT / "examples/example_1/urdf/example_1.urdf"
+    with pytest.raises(ValueError, match="Error opening file"):
+        mujoco.MjModel.from_xml_path(str(urdf))
+    convert(ROOT / "examples/example_1", tmp_path / "example_1_mujoco")
+    model = mujoco.MjModel.from_xml_path(str(tmp_path / "example_1_mujoco/scene.xml"))
+    assert model.njnt == 4
+    text = flat("practice-1/04-testing-and-modifying.md")
+    assert "drag the URDF onto it" not in text and '"Error opening file"' in text
+    assert "sw2sim convert examples/example_1 -o /tmp/example_1_mujoco" in text
+    assert "--mjcf=/tmp/example_1_mujoco/scene.xml" in text
+
+
+def test_sw2sim_view_gives_each_wheel_a_speed_slider():
+    import sw2sim
+    from sw2sim.actuators import add_actuators
+    spec = sw2sim.load_package(ROOT / "examples/example_1")
+    actuators, _ = add_actuators(spec, ROOT / "examples/example_1", sliders=True)
+    assert len(actuators) == 4 and {a.kind for a in actuators} == {"velocity"}
+    assert "gives each wheel a slider in the *Control* section" in flat("practice-1/04-testing-and-modifying.md")
