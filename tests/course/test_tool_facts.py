@@ -358,3 +358,63 @@ def test_sw2sim_view_gives_each_wheel_a_speed_slider():
     actuators, _ = add_actuators(spec, ROOT / "examples/example_1", sliders=True)
     assert len(actuators) == 4 and {a.kind for a in actuators} == {"velocity"}
     assert "gives each wheel a slider in the *Control* section" in flat("practice-1/04-testing-and-modifying.md")
+
+
+# ---- contacts between a locked base and its wheels ------------------------------------------
+
+CONTACT_SECTION = "why-a-locked-base-does-not-touch-its-wheels"
+
+
+def contacts(base_joint: str, options: str = "") -> int:
+    """Contacts between a box and a disc overlapping it on a hinge, the box held or free."""
+    import mujoco
+    xml = f"""<mujoco><option>{options}</option><worldbody>
+      <body name="base">{base_joint}<geom type="box" size=".1 .1 .02"/>
+        <body name="wheel"><joint type="hinge" axis="0 1 0"/>
+          <geom type="cylinder" size=".05 .05" pos="0 0 .03"/></body>
+      </body></worldbody></mujoco>"""
+    model = mujoco.MjModel.from_xml_string(xml)
+    data = mujoco.MjData(model)
+    mujoco.mj_forward(model, data)
+    return data.ncon
+
+
+def test_mujoco_filters_parent_contacts_except_for_a_body_welded_to_the_world():
+    assert contacts("<freejoint/>") == 0, "a free parent: filtered"
+    assert contacts("<freejoint/>", '<flag filterparent="disable"/>') > 0
+    assert contacts("") > 0, "a parent welded to the world counts as the world: not filtered"
+
+
+def test_practice_1_explains_the_exclusions_and_its_numbers_hold():
+    import mujoco
+    import sw2sim
+
+    def push_one_wheel(spec):
+        model = spec.compile()
+        data = mujoco.MjData(model)
+        mujoco.mj_forward(model, data)
+        base = model.body("base_link").id
+        touching = sum(base in (model.geom_bodyid[c.geom1], model.geom_bodyid[c.geom2])
+                       for c in data.contact[:data.ncon])
+        dof = model.joint("front_left_joint").dofadr[0]
+        while data.time < 1.0:
+            data.qfrc_applied[dof] = 1.0
+            mujoco.mj_step(model, data)
+        return touching, data.qvel[dof]
+
+    package = ROOT / "examples/example_1"
+    assert not sw2sim.load_package(package, fixed_base=False).excludes
+    spec = sw2sim.load_package(package)
+    assert len(spec.excludes) == 4
+    touching, free = push_one_wheel(spec)
+    for exclude in list(spec.excludes):
+        spec.delete(exclude)
+    held, stuck = push_one_wheel(spec)
+    text = flat("practice-1/04-testing-and-modifying.md")
+    assert touching == 0 and f"spins up freely, to {free:.1f} rad/s" in text
+    assert f"touches its wheels in {held} places" in text and abs(stuck) < 1
+    assert "### Why a locked base does not touch its wheels" in text and "`filterparent`" in text
+
+
+def test_practice_4_points_at_the_explanation():
+    assert f"(/practice-1/testing-and-modifying/#{CONTACT_SECTION})" in flat("practice-4/03-modifying-the-urdf.md")
