@@ -418,3 +418,44 @@ def test_practice_1_explains_the_exclusions_and_its_numbers_hold():
 
 def test_practice_4_points_at_the_explanation():
     assert f"(/practice-1/testing-and-modifying/#{CONTACT_SECTION})" in flat("practice-4/03-modifying-the-urdf.md")
+
+
+# ---- what holds a model in place in MuJoCo: fixed_base, not the world link ------------------
+
+def raw_mujoco(urdf_text: str):
+    """MuJoCo's own URDF reader, mesh paths made absolute and nothing else changed."""
+    import mujoco
+    meshes = (ROOT / "examples/example_1").as_posix() + "/"
+    return mujoco.MjSpec.from_string(urdf_text.replace("package://example_1/", meshes)).compile()
+
+
+def test_mujoco_holds_a_jointless_root_with_or_without_a_world_link():
+    import mujoco
+    text = (ROOT / "examples/example_1/urdf/example_1.urdf").read_text()
+    assert re.search(r'<link\s+name="world"', text)
+    without = re.sub(r'<link\s+name="world"\s*/>', "", text)
+    without = re.sub(r'<joint\s+name="world_joint".*?</joint>', "", without, flags=re.S)
+    for urdf in (text, without):
+        model = raw_mujoco(urdf)
+        assert mujoco.mjtJoint.mjJNT_FREE not in list(model.jnt_type), "no free joint"
+        wheel = model.body("front_left_wheel").id
+        assert model.body_weldid[model.body_parentid[wheel]] == 0, "the base is part of the world"
+
+
+def test_fixed_base_decides_in_load_package_and_the_world_link_in_the_commands(tmp_path):
+    import mujoco
+    import sw2sim
+    from sw2sim.convert import convert
+    free = mujoco.mjtJoint.mjJNT_FREE
+    with_world, without_world = ROOT / "examples/example_1", ROOT / "examples/example_5"
+    assert free in list(sw2sim.load_package(with_world, fixed_base=False).compile().jnt_type)
+    assert free not in list(sw2sim.load_package(without_world).compile().jnt_type)
+    assert convert(with_world, tmp_path / "one").fixed
+    assert not convert(without_world, tmp_path / "five").fixed
+    five = mujoco.MjModel.from_xml_path(str(tmp_path / "five/scene.xml"))
+    assert five.jnt_type[0] == free
+    glossary = flat("reference/06-glossary.md")
+    entry = glossary[glossary.index("### World link"):]
+    assert "in Gazebo and in MuJoCo" not in entry
+    assert "whether or not there is a world link" in entry and "fixed_base=False" in entry
+    assert "free it when the URDF has no world link" in entry
