@@ -11,12 +11,19 @@ import sw2sim  # noqa: F401  (chooses the GL platform before any test module imp
 SHARED_SESSION_FOLDERS = ("tests/site/browser/",)
 
 
+# Modules whose tests are long and share nothing: each test is a unit of its own, so that
+# the workers split them (every ROS page runs its own master and simulation).
+SPLIT_MODULES = ("tests/ros/test_page_blocks.py",)
+
+
 def scope_of(nodeid: str) -> str:
-    """The unit of work a test belongs to: its folder if listed above, else its module."""
+    """The unit of work a test belongs to: its folder if listed above, the test itself in
+    a split module, else its module."""
     for folder in SHARED_SESSION_FOLDERS:
         if nodeid.startswith(folder):
             return folder
-    return nodeid.split("::", 1)[0]
+    module = nodeid.split("::", 1)[0]
+    return nodeid if module in SPLIT_MODULES else module
 
 
 @pytest.hookimpl(optionalhook=True)

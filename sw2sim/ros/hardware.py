@@ -5,8 +5,10 @@ Between an `effort_controllers` command and the force on the joint, ROS 1 (Noeti
 1. The controller. `JointPositionController` clamps the command to the URDF's
    `<limit lower upper>` (revolute and prismatic joints) and runs a PID on the position
    error; `JointVelocityController` runs one on the velocity error; `JointEffortController`
-   passes the command on. Here the P and D terms are modelled; for a steady position
-   command the D term on the error's rate is `-d * velocity`.
+   passes the command on. For a steady position command the D term on the error's rate
+   is `-d * velocity`. The integral term is control_toolbox's `Pid::computeCommand`: the
+   error summed over time, its term `i * sum` clamped to `i_clamp`; with `antiwindup`
+   the sum itself is held where the term reaches `i_clamp`, so it cannot wind up.
 2. gazebo_ros_control's `DefaultRobotHWSim` (default_robot_hw_sim.cpp, registerJointLimits
    and writeSim) reads each transmission joint's `<limit>` (joint_limits_urdf.h: position
    limits for revolute and prismatic joints only, velocity and effort for every joint)
@@ -30,8 +32,8 @@ Between an `effort_controllers` command and the force on the joint, ROS 1 (Noeti
 Each piece of these laws is affine in the joint's position q and velocity v, so the
 effort at a state is `c0 + cq * q + cv * v` for the piece active there. World sets its
 actuator to that piece at every step, which lets MuJoCo integrate the velocity term
-implicitly, as it does a position actuator's damping. Not modelled: the PID's integral
-term, the D term's kick when the command jumps, the parameter server's `joint_limits/`
+implicitly, as it does a position actuator's damping (the integral term is a constant
+within a step). Not modelled: the D term's kick when the command jumps, the parameter server's `joint_limits/`
 and position or velocity interfaces.
 """
 
@@ -103,6 +105,21 @@ def controller(kind: str, pid: dict, setpoint: float) -> Law:
     if kind == VELOCITY:
         return (p * setpoint, 0.0, -p)
     return (setpoint, 0.0, 0.0)
+
+
+def integral(pid: dict, total: float, error: float, dt: float) -> tuple[float, float]:
+    """control_toolbox's integral term (pid.cpp, computeCommand): the new sum of the
+    error over time and the term it gives, `i * sum`, within plus or minus `i_clamp`.
+    Without antiwindup the term is clamped and the sum grows on; with it the sum is."""
+    i = float(pid.get("i", 0.0))
+    if not i:
+        return total, 0.0
+    clamp = abs(float(pid.get("i_clamp", 0.0)))
+    total += error * dt
+    if pid.get("antiwindup") in (True, "true", "True", 1):
+        total = min(max(total, -clamp / abs(i)), clamp / abs(i))
+        return total, i * total
+    return total, min(max(i * total, -clamp), clamp)
 
 
 def bounds(handle: Handle, q: float, v: float) -> tuple[Law, Law]:

@@ -20,7 +20,7 @@ gives ROS what the lessons use of Gazebo:
   limits (the speed held under the `<limit velocity>` with k_velocity, and brought down
   towards a soft limit with k_position), one without it the saturation (plus or minus the
   effort limit, and no push further past a position or the velocity limit). The PID's
-  integral term is not modelled.
+  integral term is control_toolbox's, antiwindup included.
 
 - gazebo_plugins' `libgazebo_ros_joint_state_publisher.so`: the joints it names on
   `<robotNamespace>/joint_states`.
@@ -94,6 +94,8 @@ class Controller:
     publishers: tuple = ()
     subscriber: object = None
     next_publish: float = 0.0
+    error_sum: float = 0.0    # the PID's integrated error
+    integral: float = 0.0     # the PID's integral term, in N or N·m
 
 
 class World:
@@ -266,12 +268,23 @@ class World:
     def _law(self, c: Controller) -> hardware.Law:
         """The controller's own effort law, before the joint's limits."""
         setpoint = hardware.command(c.kind, c.command, self.handles.get(c.joint))
-        return hardware.controller(c.kind, c.settings.get("pid") or {}, setpoint)
+        law = hardware.controller(c.kind, c.settings.get("pid") or {}, setpoint)
+        return (law[0] + c.integral, law[1], law[2])
+
+    def _integrate(self, c: Controller, q: float, v: float) -> None:
+        """One step of the PID's integral term on this step's error."""
+        if c.kind not in (POSITION, VELOCITY):
+            return
+        setpoint = hardware.command(c.kind, c.command, self.handles.get(c.joint))
+        error = setpoint - (q if c.kind == POSITION else v)
+        c.error_sum, c.integral = hardware.integral(c.settings.get("pid") or {}, c.error_sum,
+                                                    error, float(self.model.opt.timestep))
 
     def _drive(self, c: Controller) -> None:
         """Set the controller's actuator to the effort law that holds in this state:
         force = ctrl + biasprm[1] * q + biasprm[2] * v."""
         q, v = self._state_of(c.joint)
+        self._integrate(c, q, v)
         law = hardware.effort(self._law(c), self.handles.get(c.joint), q, v)
         a = self.model.actuator(c.actuator).id
         self.data.ctrl[a] = law[0]

@@ -129,8 +129,8 @@ JOINTS = ["middle_arm_joint", "end_arm_joint"]
 CONTROLLERS = {"middle_arm_joint": "middle_arm_controller", "end_arm_joint": "end_arm_controller"}
 # PID gains of the effort-based position controllers (config/joint_names_example_3.yaml)
 GAINS = {
-    "middle_arm_joint": {"p": 100.0, "i": 10.0, "d": 10.0, "i_clamp": 10.0},
-    "end_arm_joint": {"p": 40.0, "i": 4.0, "d": 2.0, "i_clamp": 4.0},
+    "middle_arm_joint": {"p": 100.0, "i": 10.0, "d": 10.0, "i_clamp": 10.0, "antiwindup": True},
+    "end_arm_joint": {"p": 40.0, "i": 4.0, "d": 2.0, "i_clamp": 4.0, "antiwindup": True},
 }
 STATE_RATE = 20               # Hz, joint_state_controller's publish rate
 

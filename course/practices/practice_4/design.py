@@ -105,8 +105,9 @@ def bar_end() -> float:
 JOINT = "block_joint"
 CONTROLLER = "block_controller"
 # PID gains of the effort-based position controller (config/joint_names_example_4.yaml):
-# N per m of error, N per m·s of integrated error, N per m/s; i_clamp in N
-GAINS = {"p": 2000.0, "i": 500.0, "d": 200.0, "i_clamp": 50.0}
+# N per m of error, N per m·s of integrated error, N per m/s; i_clamp in N; antiwindup
+# holds the integrated error where the integral term reaches i_clamp
+GAINS = {"p": 2000.0, "i": 500.0, "d": 200.0, "i_clamp": 50.0, "antiwindup": True}
 STATE_RATE = 20               # Hz, joint_state_controller's publish rate
 
 

@@ -36,16 +36,22 @@ def clamp(value, low, high):
 
 
 class Pid:
-    """A PID on the position error; the integral is clamped to ±i_clamp."""
+    """A PID on the position error, as ROS's control_toolbox computes it: the integral
+    term is i times the summed error, within ±i_clamp. With antiwindup the sum stops
+    where the term reaches i_clamp; without, it keeps growing behind the clamp."""
 
-    def __init__(self, p, i=0.0, d=0.0, i_clamp=0.0):
-        self.p, self.i, self.d, self.i_clamp = p, i, d, i_clamp
-        self.integral = 0.0
+    def __init__(self, p, i=0.0, d=0.0, i_clamp=0.0, antiwindup=False):
+        self.p, self.i, self.d, self.i_clamp = p, i, d, abs(i_clamp)
+        self.antiwindup = antiwindup
+        self.summed = 0.0
 
     def __call__(self, error, error_rate, dt):
-        self.integral = clamp(self.integral + self.i * error * dt,
-                              -self.i_clamp, self.i_clamp)
-        return self.p * error + self.integral + self.d * error_rate
+        self.summed += error * dt
+        if self.antiwindup and self.i:
+            bound = self.i_clamp / abs(self.i)
+            self.summed = clamp(self.summed, -bound, bound)
+        integral = clamp(self.i * self.summed, -self.i_clamp, self.i_clamp)
+        return self.p * error + integral + self.d * error_rate
 
 
 class JointPositionController:
