@@ -80,3 +80,45 @@ def test_practice_5s_steering_joint_is_too_light_for_an_explicit_d_term():
     full = np.zeros((model.nv, model.nv))
     mujoco.mj_fullM(model, data, full)
     assert full[dof, dof] < needed, full[dof, dof]
+
+
+@pytest.mark.parametrize("example, joint", [("example_3", "middle_arm_joint"),
+                                            ("example_3", "end_arm_joint"),
+                                            ("example_4", "block_joint")])
+@pytest.mark.parametrize("soft", [True, False])
+def test_the_mujoco_scripts_limit_the_torque_as_the_stand_in_does(example, joint, soft):
+    """examples/example_3/scripts/arm_controller.py's enforce_limits (the position
+    controllers of Practices 3 and 4) and sw2sim.ros.hardware give the same torque, with
+    and without the <safety_controller>, over states inside and past every limit."""
+    import dataclasses
+    import importlib.util
+    import sys
+
+    from sw2sim.package import find_package
+    from sw2sim.ros import hardware
+    scripts = EXAMPLES / "example_3" / "scripts"
+    sys.path.insert(0, str(scripts))
+    try:
+        spec = importlib.util.spec_from_file_location("arm_controller", scripts / "arm_controller.py")
+        module = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(module)
+    finally:
+        sys.path.remove(str(scripts))
+    handle = hardware.handles(find_package(EXAMPLES / example))[joint]
+    if not soft:
+        limits = dataclasses.replace(handle.limits, k_position=None, k_velocity=None,
+                                     soft_lower=None, soft_upper=None)
+        handle = dataclasses.replace(handle, limits=limits)
+    assert handle.soft == soft
+    controller = object.__new__(module.JointPositionController)
+    controller.limits = handle.limits
+    lim = handle.limits
+    rng = np.random.default_rng(3)
+    span = max(abs(lim.lower or 1.0), abs(lim.upper or 1.0)) * 1.2
+    for _ in range(300):
+        q = rng.uniform(-span, span) if handle.positional else rng.uniform(-10, 10)
+        v = rng.uniform(-1.5, 1.5) * lim.velocity
+        torque = rng.uniform(-2, 2) * lim.effort
+        expected = hardware.value(hardware.effort((torque, 0.0, 0.0), handle, q, v), q, v)
+        assert controller.enforce_limits(torque, q, v) == pytest.approx(expected, abs=1e-9), \
+            (q, v, torque)

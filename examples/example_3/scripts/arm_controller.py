@@ -96,18 +96,24 @@ class JointPositionController:
             self.reference += self.reference_speed * dt
 
     def enforce_limits(self, torque, q, v):
-        """Clip the torque to keep the joint under its velocity limit and inside
-        its soft limits, as ros_control's soft joint limits do. A joint without
-        a <safety_controller> gets only the effort limit, as in ROS.
+        """Clip the torque as gazebo_ros_control's default hardware does.
 
-        Near the velocity limit, the torque allowed in the direction of motion
-        falls to zero; above it, only a braking torque is allowed. Near a soft
-        position limit, the speed allowed towards it shrinks with the distance
-        left (k_position).
+        With a <safety_controller> (ros_control's soft limits), the torque allowed
+        in the direction of motion falls with the speed and is zero at the velocity
+        limit; above it, only a braking torque is allowed. Near a soft position
+        limit, the speed allowed towards it shrinks with the distance left
+        (k_position). Without one (saturation), the torque is clamped to the effort
+        limit and cut off in a direction that goes further past the velocity limit
+        or a position limit.
         """
         lim, top = self.limits, self.limits.velocity
-        if not lim.has_soft_limits:     # no <safety_controller>: only the effort limit
-            return clamp(torque, -lim.effort, lim.effort)
+        if not lim.has_soft_limits:     # no <safety_controller>: saturation
+            low, high = -lim.effort, lim.effort
+            if v > top or (lim.upper is not None and q > lim.upper):
+                high = 0.0
+            if v < -top or (lim.lower is not None and q < lim.lower):
+                low = 0.0
+            return clamp(torque, low, high)
         v_min = clamp(-lim.k_position * (q - lim.soft_lower), -top, top)
         v_max = clamp(-lim.k_position * (q - lim.soft_upper), -top, top)
         low = clamp(-lim.k_velocity * (v - v_min), -lim.effort, lim.effort)
