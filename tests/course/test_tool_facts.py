@@ -459,3 +459,36 @@ def test_fixed_base_decides_in_load_package_and_the_world_link_in_the_commands(t
     assert "in Gazebo and in MuJoCo" not in entry
     assert "whether or not there is a world link" in entry and "fixed_base=False" in entry
     assert "free it when the URDF has no world link" in entry
+
+
+# ---- Practice 5's export page: the controllers the launch starts, the car's height ----------
+
+def test_practice_5_counts_the_controllers_its_launch_file_spawns():
+    from lxml import etree
+    launch = etree.parse(str(ROOT / "examples/example_5/launch/gazebo.launch"))
+    spawner, = launch.xpath("//node[@pkg='controller_manager' and @type='spawner']")
+    spawned = spawner.get("args").split()
+    joints = etree.parse(str(ROOT / "examples/example_5/urdf/example_5.urdf")).xpath(
+        "//joint[@type!='fixed']")
+    assert len(spawned) == 8 == len(joints) + 1 and spawned[0] == "joint_state_controller"
+    text = flat("practice-5/02-exporting.md")
+    assert "nine controllers" not in text
+    assert "starts eight controllers" in text and "each of the seven joints" in text
+
+
+def test_practice_5_explains_the_height_it_prints():
+    import mujoco
+    import sw2sim
+    p5 = design("practice_5")
+    model = sw2sim.load_package(ROOT / "examples/example_5", fixed_base=False).compile()
+    data = mujoco.MjData(model)
+    mujoco.mj_forward(model, data)
+    radius = p5.WHEEL_RADIUS / 1000
+    printed = f"{data.qpos[2]:.3f}"
+    assert data.qpos[2] == pytest.approx(radius + 0.001, abs=1e-6)
+    while data.time < 1.0:
+        mujoco.mj_step(model, data)
+    assert radius - 0.001 < data.qpos[2] < radius, "settles a fraction of a millimetre lower"
+    text = flat("practice-5/02-exporting.md")
+    assert f"the printout says {printed} m" in text and f"{radius:.2f} m, the wheels' radius" in text
+    assert "1 mm above the floor" in text
