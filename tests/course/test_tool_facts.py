@@ -492,3 +492,35 @@ def test_practice_5_explains_the_height_it_prints():
     text = flat("practice-5/02-exporting.md")
     assert f"the printout says {printed} m" in text and f"{radius:.2f} m, the wheels' radius" in text
     assert "1 mm above the floor" in text
+
+
+# ---- Practice 2: a turn on the spot needs sideways slip --------------------------------------
+
+def test_practice_2s_turn_on_the_spot_slips_sideways():
+    import mujoco
+    import sw2sim
+    p2 = design("practice_2")
+    miss, reach = set(), set()
+    for link in p2.SIDES:
+        x, y, _ = (v / 1000 for v in p2.wheel_centre(link))
+        ax, ay, _ = p2.axle_direction(link)
+        miss.add(round(abs(x * ay - y * ax), 6))           # axle line to the centre
+        reach.add(round(math.hypot(x, y), 6))              # wheel to the centre
+    (d,), (r,) = miss, reach
+    lever = math.sqrt(r * r - d * d)                        # the push's lever about the centre
+    text = flat("practice-2/03-testing-and-modifying.md")
+    assert "which these wheels can do by rolling" not in text
+    assert f"passes {d * 1000:.0f} mm from the base's centre" in text
+    assert f"sideways {d / r * 100:.0f} cm for every metre it travels" in text
+    assert f"a lever of only {d * 1000:.0f} mm" in text and f"one of {lever * 1000:.0f} mm" in text
+    # "The pushes win": 1 N·m at each 0.1 m tyre against the most friction the floor can
+    # give each wheel sideways (a quarter of the weight, times the friction coefficient)
+    model = sw2sim.load_package(ROOT / "examples/example_2", fixed_base=False).compile()
+    weight = model.body_subtreemass[model.body("base_link").id] * -model.opt.gravity[2]
+    floor = model.geom("floor").id
+    wheels = [g for g in range(model.ngeom) if model.geom_group[g] == 0
+              and model.body(model.geom_bodyid[g]).name.endswith("_wheel")]
+    mu = max(max(model.geom_friction[floor, 0], model.geom_friction[g, 0]) for g in wheels)
+    push = 1.0 / (p2.WHEEL_DIAMETER / 2000)
+    assert 4 * push * lever > 4 * mu * weight / 4 * d
+    assert mujoco.mjtJoint.mjJNT_FREE in list(model.jnt_type)
