@@ -147,6 +147,7 @@ its own, and stops everything it started on exit, Ctrl-C or --duration.
 
 examples:
   sw2sim ros examples/example_3 --duration 20
+  sw2sim ros examples/example_5 --view
   sw2sim ros my_robot --launch my_robot/launch/gazebo.launch
 """
 
@@ -254,6 +255,8 @@ def _parser() -> argparse.ArgumentParser:
     ros.add_argument("--duration", type=float, metavar="S", help="stop after S seconds")
     ros.add_argument("--realtime", type=float, default=1.0, metavar="F",
                      help="real-time factor: 1 (default) as in Gazebo, 0 as fast as possible")
+    ros.add_argument("--view", action="store_true",
+                     help="show the simulation in MuJoCo's viewer (needs a display)")
     ros.set_defaults(command="ros", run=_ros)
     return parser
 
@@ -381,8 +384,12 @@ def _convert(args) -> int:
 # -- ros -----------------------------------------------------------------------------
 def _ros(args) -> int:
     from .ros.run import run
+    view = args.view
+    if view and (reason := _no_display()):
+        _say(f"sw2sim ros: --view: {reason}; the simulation runs without the viewer")
+        view = False
     return run(args.path, launch=args.launch, duration=args.duration, realtime=args.realtime,
-               say=lambda text: print(text, flush=True))
+               view=view, say=lambda text: print(text, flush=True))
 
 
 # -- view and render -------------------------------------------------------------------

@@ -137,7 +137,7 @@ class _quiet:
 
 
 def run(path: str, launch: str | None = None, duration: float | None = None,
-        realtime: float = 1.0, say=print) -> int:
+        realtime: float = 1.0, view: bool = False, say=print) -> int:
     reason = missing()
     if reason:
         say(f"sw2sim ros: {reason}")
@@ -153,6 +153,9 @@ def run(path: str, launch: str | None = None, duration: float | None = None,
         say(f"sw2sim ros: {launch_file} does not exist; give the launch file with --launch FILE")
         return 2
     env = environment(package.root, realtime)
+    if view:
+        env["SW2SIM_VIEW"] = "1"
+        env["MUJOCO_GL"] = "glfw"    # the viewer's window, not the off-screen default
     started: list[subprocess.Popen] = []
     try:
         uri = env.get("ROS_MASTER_URI")

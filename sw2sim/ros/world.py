@@ -26,7 +26,8 @@ gives ROS what the lessons use of Gazebo:
   `<robotNamespace>/joint_states`.
 
 `SW2SIM_REALTIME` sets the real-time factor: 1 (the default) for people, 0 for as fast
-as the machine goes (tests).
+as the machine goes (tests). `SW2SIM_VIEW=1` shows the simulation in MuJoCo's viewer
+(sw2sim.ros.viewer).
 """
 
 from __future__ import annotations
@@ -437,9 +438,15 @@ def main(argv: list[str] | None = None) -> int:
     world.services()
     world.paused = "-u" in argv   # gzserver's flag: start paused
     realtime = float(os.environ.get("SW2SIM_REALTIME", "1") or 0)
+    window = None
+    if os.environ.get("SW2SIM_VIEW") == "1":
+        from .viewer import Window
+        window = Window(world)
     started, sim_start = time.monotonic(), 0.0
     try:
         while not rospy.is_shutdown():
+            if window is not None:
+                window.update()
             if world.model is None or world.paused:
                 time.sleep(0.01)
                 continue
@@ -450,6 +457,8 @@ def main(argv: list[str] | None = None) -> int:
                     time.sleep(ahead)
     except KeyboardInterrupt:
         pass
+    if window is not None:
+        window.close()
     rospy.signal_shutdown("stopped")
     return 0
 

@@ -4,10 +4,13 @@ master with MuJoCo in Gazebo's place, observed from a separate rospy node."""
 from __future__ import annotations
 
 import json
+import shutil
 import sys
+import time
 from pathlib import Path
 
 import numpy as np
+import pytest
 
 from packages import EXAMPLES
 
@@ -40,3 +43,23 @@ def test_the_arm_reaches_each_random_setpoint(ros):
             reached += 1
     assert reached >= 4, f"only {reached} setpoints could be judged"
 
+
+
+@pytest.mark.skipif(shutil.which("Xvfb") is None, reason="Xvfb is not installed (`make setup` "
+                    "installs it with ROS 1)")
+def test_view_shows_the_simulation_in_mujocos_viewer(ros):
+    """`sw2sim ros PACKAGE --view` opens MuJoCo's viewer on a display, showing the robot
+    the launch file spawned (on a virtual screen here, black until a window opens)."""
+    from course import rviz_picture
+    with rviz_picture.xvfb((800, 600)) as screen:
+        ros.env["DISPLAY"] = screen.display
+        ros.start(sys.executable, "-m", "sw2sim", "ros", str(EXAMPLES / "example_3"), "--view",
+                  "--realtime", "0", name="sw2sim_ros")
+        deadline, lit = time.monotonic() + 30, 0.0
+        while time.monotonic() < deadline and lit < 0.1:
+            time.sleep(0.5)
+            lit = float(np.mean(rviz_picture.grab(screen.display).max(axis=2) > 40))
+        log = (ros.logs / "sw2sim_ros.log").read_text(errors="replace")
+        assert lit >= 0.1, f"no viewer on the screen ({lit:.0%} lit):\n{log[-2000:]}"
+        assert "could not open a window" not in log
+        ros.stop_all()
