@@ -524,3 +524,20 @@ def test_practice_2s_turn_on_the_spot_slips_sideways():
     push = 1.0 / (p2.WHEEL_DIAMETER / 2000)
     assert 4 * push * lever > 4 * mu * weight / 4 * d
     assert mujoco.mjtJoint.mjJNT_FREE in list(model.jnt_type)
+
+
+# ---- Practice 4: how long the whole travel takes ---------------------------------------------
+
+def test_practice_4s_pages_agree_on_how_long_the_whole_travel_takes():
+    import numpy as np
+    from course.practices.practice_4 import figures
+    p4 = design("practice_4")
+    t, _, q, _, _ = figures.long_move().states()
+    arrived = t[np.argmax(np.abs(q - p4.UPPER) < 0.001)]          # within the 1 mm tolerance
+    exporting = flat("practice-4/02-exporting.md")
+    testing = flat("practice-4/04-testing-and-scripting.md")
+    assert "under three seconds" not in exporting
+    assert f"travel in {p4.UPPER / p4.VELOCITY:.2f} s" in exporting
+    assert 3.0 < arrived < 3.5 and "a little over three seconds" in exporting
+    said = float(re.search(r"The move takes about (\d\.\d) s", testing).group(1))
+    assert 3.0 < said < 3.5 and abs(said - arrived) <= 0.1, (said, arrived)
