@@ -541,3 +541,25 @@ def test_practice_4s_pages_agree_on_how_long_the_whole_travel_takes():
     assert 3.0 < arrived < 3.5 and "a little over three seconds" in exporting
     said = float(re.search(r"The move takes about (\d\.\d) s", testing).group(1))
     assert 3.0 < said < 3.5 and abs(said - arrived) <= 0.1, (said, arrived)
+
+
+# ---- the home page's promise about the scripts -----------------------------------------------
+
+def test_the_home_page_describes_the_scripts_as_the_pages_present_them():
+    text = flat("index.md")
+    assert "line by line" not in text
+    assert "Every script is printed whole on its page" in text
+    long_ones = {"practice-3/05-position-control.md": "examples/example_3/scripts/arm_controller.py",
+                 "practice-5/04-control-script.md": "examples/example_5/scripts/ackermann.py"}
+    for page, script in long_ones.items():
+        assert f"{{% include_code {script} %}}" in (PAGES / page).read_text(encoding="utf-8")
+        source = (ROOT / script).read_text(encoding="utf-8")
+        assert len(source.splitlines()) > 150, f"{script} is one of the two long ones"
+        assert source.startswith('"""'), f"{script} opens with a docstring"
+    assert "the arm controller of Practice 3 and the car's script of Practice 5" in text
+    pages = " ".join(path.read_text(encoding="utf-8") for path in PAGES.glob("*/*.md"))
+    scripts = sorted(ROOT.glob("examples/example_*/scripts/*.py"))
+    for script in scripts:
+        assert f"{{% include_code {script.relative_to(ROOT).as_posix()} %}}" in pages, script
+    long = {s.relative_to(ROOT).as_posix() for s in scripts if len(s.read_text().splitlines()) > 150}
+    assert long == set(long_ones.values())
