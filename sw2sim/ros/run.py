@@ -155,7 +155,8 @@ def run(path: str, launch: str | None = None, duration: float | None = None,
     env = environment(package.root, realtime)
     if view:
         env["SW2SIM_VIEW"] = "1"
-        env["MUJOCO_GL"] = "glfw"    # the viewer's window, not the off-screen default
+        from .. import gl
+        gl.for_window(env)           # the viewer's window, not the off-screen default
     started: list[subprocess.Popen] = []
     try:
         uri = env.get("ROS_MASTER_URI")

@@ -314,11 +314,17 @@ def test_position_control_page_numbers(ctl):
     assert round(M[1, 1] / ctl.TIMESTEP) == 8 and "and 8 for the end joint" in text
 
 
-def test_without_a_safety_controller_only_the_effort_is_clipped(ctl):
+def test_without_a_safety_controller_the_effort_is_saturated(ctl):
+    """gazebo_ros_control's saturation handle: the effort limit, and no push further past
+    the velocity limit or a position limit (practice-3/02-exporting.md)."""
     from sw2sim.ros_control import JointLimits
     arm = ctl.Arm()
     c = arm.controllers["middle_arm_controller"]
     c.limits = JointLimits(lower=-LIMIT, upper=LIMIT, effort=50.0, velocity=2.0)
-    assert c.enforce_limits(80.0, q=0.0, v=5.0) == 50.0
-    assert c.enforce_limits(-10.0, q=0.0, v=5.0) == -10.0
-    assert c.enforce_limits(-90.0, q=0.0, v=-5.0) == -50.0
+    assert c.enforce_limits(80.0, q=0.0, v=1.0) == 50.0          # under the limits
+    assert c.enforce_limits(80.0, q=0.0, v=5.0) == 0.0           # past the velocity limit
+    assert c.enforce_limits(-10.0, q=0.0, v=5.0) == -10.0        # braking is allowed
+    assert c.enforce_limits(-90.0, q=0.0, v=-5.0) == 0.0
+    assert c.enforce_limits(-90.0, q=0.0, v=-1.0) == -50.0
+    assert c.enforce_limits(30.0, q=LIMIT + 0.01, v=0.0) == 0.0  # past the upper limit
+    assert c.enforce_limits(-30.0, q=LIMIT + 0.01, v=0.0) == -30.0

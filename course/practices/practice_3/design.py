@@ -127,10 +127,12 @@ def tool_tip() -> tuple[float, float, float]:
 
 JOINTS = ["middle_arm_joint", "end_arm_joint"]
 CONTROLLERS = {"middle_arm_joint": "middle_arm_controller", "end_arm_joint": "end_arm_controller"}
-# PID gains of the effort-based position controllers (config/joint_names_example_3.yaml)
+# PID gains of the effort-based position controllers (config/joint_names_example_3.yaml).
+# The horizontal arm carries no steady load, so the integral term gets little room: at
+# i_clamp / p = 0.005 rad it can hold neither joint further than that from its set point.
 GAINS = {
-    "middle_arm_joint": {"p": 100.0, "i": 10.0, "d": 10.0, "i_clamp": 10.0, "antiwindup": True},
-    "end_arm_joint": {"p": 40.0, "i": 4.0, "d": 2.0, "i_clamp": 4.0, "antiwindup": True},
+    "middle_arm_joint": {"p": 100.0, "i": 10.0, "d": 10.0, "i_clamp": 0.5, "antiwindup": True},
+    "end_arm_joint": {"p": 40.0, "i": 4.0, "d": 2.0, "i_clamp": 0.2, "antiwindup": True},
 }
 STATE_RATE = 20               # Hz, joint_state_controller's publish rate
 
