@@ -208,7 +208,7 @@ def test_exporting_page_numbers():
     mass = design.block().mass
     assert f"200 / {mass:.3f} \\approx {200 / mass:.0f}" in text
     assert "almost six times gravity" in text and 5.5 < 200 / mass / 9.81 < 6
-    assert UPPER / design.VELOCITY == 2.69 and "in 2.69 s" in text   # the move: test_tool_facts.py
+    assert UPPER / design.VELOCITY == 2.69 and "in 2.69 s" in text   # the move: test_lesson_facts.py
     assert "0.105 + 2.69 = 2.795" in text and "2.795 + 0.075 = 2.870" in text
     assert "2.880 m" in text
 

@@ -72,7 +72,7 @@ def test_joints_limits_and_no_world_link():
     assert len(wheels) == 4 and not any(model.jnt_limited[j] for j in wheels)
     data = mujoco.MjData(model)
     mujoco.mj_forward(model, data)
-    assert data.qpos[2] == pytest.approx(0.06, abs=0.001)    # set down 1 mm above; test_tool_facts.py
+    assert data.qpos[2] == pytest.approx(0.06, abs=0.001)    # set down 1 mm above; test_lesson_facts.py
 
 
 def test_knuckle_limit_is_equation_4_at_the_steering_limit_rounded_up(script, geometry):

@@ -1,6 +1,6 @@
-"""What the pages say about SolidWorks, the exporter, ROS and MuJoCo, checked where it can
-be: against the designs, the example packages, the exporter's own dialog texts, catkin's
-package check and MuJoCo itself.
+"""What the pages say about SolidWorks and the exporter, checked where it can be: the masses
+SolidWorks shows (from the designs' exact solids), catkin's verdict on package names, what
+makes up a link's mass, and the names the exporter's dialogs give their fields.
 """
 
 from __future__ import annotations
@@ -10,20 +10,16 @@ import math
 import re
 import shutil
 import subprocess
-import sys
 
 import pytest
+import yourdfpy
 from exact_solids import exact_mass
+from page_text import flat_page as flat
 
 from course.parts import Part
 from course.practices import ROOT, design
 
 PAGES = ROOT / "_pages"
-
-
-def flat(path: str) -> str:
-    """A page's text with its line breaks as spaces, so that a phrase may wrap."""
-    return " ".join((PAGES / path).read_text(encoding="utf-8").split())
 
 
 # ---- masses: SolidWorks weighs the exact solid, the script the 96-facet mesh ---------------
@@ -95,7 +91,6 @@ def test_practice_1_says_what_the_script_prints_and_what_solidworks_shows():
 
 
 def test_the_lesson_package_carries_the_meshes_masses_an_export_the_exact_ones():
-    import yourdfpy
     p1 = design("practice_1")
     robot = yourdfpy.URDF.load(str(ROOT / "examples/example_1/urdf/example_1.urdf"), load_meshes=False)
     urdf_wheel = robot.link_map["front_left_wheel"].inertial.mass
@@ -312,254 +307,3 @@ def test_the_exporter_reference_gives_the_link_window_no_collision_fields():
     for name in PART_DIALOG_ONLY - {"Visual", "Collision"}:
         for hit in re.finditer(re.escape(name), text):
             assert "single part" in text[hit.start() - 120:hit.start()], name
-
-
-# ---- MuJoCo's viewer and an exported package ------------------------------------------------
-
-def fresh_python(code: str) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT)
-
-
-def test_import_mujoco_alone_does_not_load_the_viewer():
-    run = fresh_python("import mujoco\nmujoco.viewer")
-    assert run.returncode != 0 and "AttributeError" in run.stderr
-    assert fresh_python("import mujoco.viewer\nmujoco.viewer.launch").returncode == 0
-    text = (PAGES / "practice-1/04-testing-and-modifying.md").read_text(encoding="utf-8")
-    launch = text.index("mujoco.viewer.launch(model)")
-    assert "import mujoco.viewer" in text[:launch] and "AttributeError" in text[:launch]
-
-
-def test_the_viewers_command_line_takes_an_mjcf_file():
-    run = subprocess.run([sys.executable, "-m", "mujoco.viewer", "--help"], capture_output=True,
-                         text=True, timeout=60)
-    assert run.returncode == 0 and "--mjcf" in run.stdout
-    assert "python -m mujoco.viewer --mjcf=" in (PAGES / "practice-1/04-testing-and-modifying.md").read_text()
-
-
-def test_mujoco_cannot_open_an_exported_urdf_but_can_open_the_converted_folder(tmp_path):
-    import mujoco
-    from sw2sim.convert import convert
-    urdf = ROOT / "examples/example_1/urdf/example_1.urdf"
-    with pytest.raises(ValueError, match="Error opening file"):
-        mujoco.MjModel.from_xml_path(str(urdf))
-    convert(ROOT / "examples/example_1", tmp_path / "example_1_mujoco")
-    model = mujoco.MjModel.from_xml_path(str(tmp_path / "example_1_mujoco/scene.xml"))
-    assert model.njnt == 4
-    text = flat("practice-1/04-testing-and-modifying.md")
-    assert "drag the URDF onto it" not in text and '"Error opening file"' in text
-    assert "sw2sim convert examples/example_1 -o /tmp/example_1_mujoco" in text
-    assert "--mjcf=/tmp/example_1_mujoco/scene.xml" in text
-
-
-def test_sw2sim_view_gives_each_wheel_a_speed_slider():
-    import sw2sim
-    from sw2sim.actuators import add_actuators
-    spec = sw2sim.load_package(ROOT / "examples/example_1")
-    actuators, _ = add_actuators(spec, ROOT / "examples/example_1", sliders=True)
-    assert len(actuators) == 4 and {a.kind for a in actuators} == {"velocity"}
-    assert "gives each wheel a slider in the *Control* section" in flat("practice-1/04-testing-and-modifying.md")
-
-
-# ---- contacts between a locked base and its wheels ------------------------------------------
-
-CONTACT_SECTION = "why-a-locked-base-does-not-touch-its-wheels"
-
-
-def contacts(base_joint: str, options: str = "") -> int:
-    """Contacts between a box and a disc overlapping it on a hinge, the box held or free."""
-    import mujoco
-    xml = f"""<mujoco><option>{options}</option><worldbody>
-      <body name="base">{base_joint}<geom type="box" size=".1 .1 .02"/>
-        <body name="wheel"><joint type="hinge" axis="0 1 0"/>
-          <geom type="cylinder" size=".05 .05" pos="0 0 .03"/></body>
-      </body></worldbody></mujoco>"""
-    model = mujoco.MjModel.from_xml_string(xml)
-    data = mujoco.MjData(model)
-    mujoco.mj_forward(model, data)
-    return data.ncon
-
-
-def test_mujoco_filters_parent_contacts_except_for_a_body_welded_to_the_world():
-    assert contacts("<freejoint/>") == 0, "a free parent: filtered"
-    assert contacts("<freejoint/>", '<flag filterparent="disable"/>') > 0
-    assert contacts("") > 0, "a parent welded to the world counts as the world: not filtered"
-
-
-def test_practice_1_explains_the_exclusions_and_its_numbers_hold():
-    import mujoco
-    import sw2sim
-
-    def push_one_wheel(spec):
-        model = spec.compile()
-        data = mujoco.MjData(model)
-        mujoco.mj_forward(model, data)
-        base = model.body("base_link").id
-        touching = sum(base in (model.geom_bodyid[c.geom1], model.geom_bodyid[c.geom2])
-                       for c in data.contact[:data.ncon])
-        dof = model.joint("front_left_joint").dofadr[0]
-        while data.time < 1.0:
-            data.qfrc_applied[dof] = 1.0
-            mujoco.mj_step(model, data)
-        return touching, data.qvel[dof]
-
-    package = ROOT / "examples/example_1"
-    assert not sw2sim.load_package(package, fixed_base=False).excludes
-    spec = sw2sim.load_package(package)
-    assert len(spec.excludes) == 4
-    touching, free = push_one_wheel(spec)
-    for exclude in list(spec.excludes):
-        spec.delete(exclude)
-    held, stuck = push_one_wheel(spec)
-    text = flat("practice-1/04-testing-and-modifying.md")
-    assert touching == 0 and f"spins up freely, to {free:.1f} rad/s" in text
-    assert f"touches its wheels in {held} places" in text and abs(stuck) < 1
-    assert "### Why a locked base does not touch its wheels" in text and "`filterparent`" in text
-
-
-def test_practice_4_points_at_the_explanation():
-    assert f"(/practice-1/testing-and-modifying/#{CONTACT_SECTION})" in flat("practice-4/03-modifying-the-urdf.md")
-
-
-# ---- what holds a model in place in MuJoCo: fixed_base, not the world link ------------------
-
-def raw_mujoco(urdf_text: str):
-    """MuJoCo's own URDF reader, mesh paths made absolute and nothing else changed."""
-    import mujoco
-    meshes = (ROOT / "examples/example_1").as_posix() + "/"
-    return mujoco.MjSpec.from_string(urdf_text.replace("package://example_1/", meshes)).compile()
-
-
-def test_mujoco_holds_a_jointless_root_with_or_without_a_world_link():
-    import mujoco
-    text = (ROOT / "examples/example_1/urdf/example_1.urdf").read_text()
-    assert re.search(r'<link\s+name="world"', text)
-    without = re.sub(r'<link\s+name="world"\s*/>', "", text)
-    without = re.sub(r'<joint\s+name="world_joint".*?</joint>', "", without, flags=re.S)
-    for urdf in (text, without):
-        model = raw_mujoco(urdf)
-        assert mujoco.mjtJoint.mjJNT_FREE not in list(model.jnt_type), "no free joint"
-        wheel = model.body("front_left_wheel").id
-        assert model.body_weldid[model.body_parentid[wheel]] == 0, "the base is part of the world"
-
-
-def test_fixed_base_decides_in_load_package_and_the_world_link_in_the_commands(tmp_path):
-    import mujoco
-    import sw2sim
-    from sw2sim.convert import convert
-    free = mujoco.mjtJoint.mjJNT_FREE
-    with_world, without_world = ROOT / "examples/example_1", ROOT / "examples/example_5"
-    assert free in list(sw2sim.load_package(with_world, fixed_base=False).compile().jnt_type)
-    assert free not in list(sw2sim.load_package(without_world).compile().jnt_type)
-    assert convert(with_world, tmp_path / "one").fixed
-    assert not convert(without_world, tmp_path / "five").fixed
-    five = mujoco.MjModel.from_xml_path(str(tmp_path / "five/scene.xml"))
-    assert five.jnt_type[0] == free
-    glossary = flat("reference/06-glossary.md")
-    entry = glossary[glossary.index("### World link"):]
-    assert "in Gazebo and in MuJoCo" not in entry
-    assert "whether or not there is a world link" in entry and "fixed_base=False" in entry
-    assert "free it when the URDF has no world link" in entry
-
-
-# ---- Practice 5's export page: the controllers the launch starts, the car's height ----------
-
-def test_practice_5_counts_the_controllers_its_launch_file_spawns():
-    from lxml import etree
-    launch = etree.parse(str(ROOT / "examples/example_5/launch/gazebo.launch"))
-    spawner, = launch.xpath("//node[@pkg='controller_manager' and @type='spawner']")
-    spawned = spawner.get("args").split()
-    joints = etree.parse(str(ROOT / "examples/example_5/urdf/example_5.urdf")).xpath(
-        "//joint[@type!='fixed']")
-    assert len(spawned) == 8 == len(joints) + 1 and spawned[0] == "joint_state_controller"
-    text = flat("practice-5/02-exporting.md")
-    assert "nine controllers" not in text
-    assert "starts eight controllers" in text and "each of the seven joints" in text
-
-
-def test_practice_5_explains_the_height_it_prints():
-    import mujoco
-    import sw2sim
-    p5 = design("practice_5")
-    model = sw2sim.load_package(ROOT / "examples/example_5", fixed_base=False).compile()
-    data = mujoco.MjData(model)
-    mujoco.mj_forward(model, data)
-    radius = p5.WHEEL_RADIUS / 1000
-    printed = f"{data.qpos[2]:.3f}"
-    assert data.qpos[2] == pytest.approx(radius + 0.001, abs=1e-6)
-    while data.time < 1.0:
-        mujoco.mj_step(model, data)
-    assert radius - 0.001 < data.qpos[2] < radius, "settles a fraction of a millimetre lower"
-    text = flat("practice-5/02-exporting.md")
-    assert f"the printout says {printed} m" in text and f"{radius:.2f} m, the wheels' radius" in text
-    assert "1 mm above the floor" in text
-
-
-# ---- Practice 2: a turn on the spot needs sideways slip --------------------------------------
-
-def test_practice_2s_turn_on_the_spot_slips_sideways():
-    import mujoco
-    import sw2sim
-    p2 = design("practice_2")
-    miss, reach = set(), set()
-    for link in p2.SIDES:
-        x, y, _ = (v / 1000 for v in p2.wheel_centre(link))
-        ax, ay, _ = p2.axle_direction(link)
-        miss.add(round(abs(x * ay - y * ax), 6))           # axle line to the centre
-        reach.add(round(math.hypot(x, y), 6))              # wheel to the centre
-    (d,), (r,) = miss, reach
-    lever = math.sqrt(r * r - d * d)                        # the push's lever about the centre
-    text = flat("practice-2/03-testing-and-modifying.md")
-    assert "which these wheels can do by rolling" not in text
-    assert f"passes {d * 1000:.0f} mm from the base's centre" in text
-    assert f"sideways {d / r * 100:.0f} cm for every metre it travels" in text
-    assert f"a lever of only {d * 1000:.0f} mm" in text and f"one of {lever * 1000:.0f} mm" in text
-    # "The pushes win": 1 N·m at each 0.1 m tyre against the most friction the floor can
-    # give each wheel sideways (a quarter of the weight, times the friction coefficient)
-    model = sw2sim.load_package(ROOT / "examples/example_2", fixed_base=False).compile()
-    weight = model.body_subtreemass[model.body("base_link").id] * -model.opt.gravity[2]
-    floor = model.geom("floor").id
-    wheels = [g for g in range(model.ngeom) if model.geom_group[g] == 0
-              and model.body(model.geom_bodyid[g]).name.endswith("_wheel")]
-    mu = max(max(model.geom_friction[floor, 0], model.geom_friction[g, 0]) for g in wheels)
-    push = 1.0 / (p2.WHEEL_DIAMETER / 2000)
-    assert 4 * push * lever > 4 * mu * weight / 4 * d
-    assert mujoco.mjtJoint.mjJNT_FREE in list(model.jnt_type)
-
-
-# ---- Practice 4: how long the whole travel takes ---------------------------------------------
-
-def test_practice_4s_pages_agree_on_how_long_the_whole_travel_takes():
-    import numpy as np
-    from course.practices.practice_4 import figures
-    p4 = design("practice_4")
-    t, _, q, _, _ = figures.long_move().states()
-    arrived = t[np.argmax(np.abs(q - p4.UPPER) < 0.001)]          # within the 1 mm tolerance
-    exporting = flat("practice-4/02-exporting.md")
-    testing = flat("practice-4/04-testing-and-scripting.md")
-    assert "under three seconds" not in exporting
-    assert f"travel in {p4.UPPER / p4.VELOCITY:.2f} s" in exporting
-    assert 3.0 < arrived < 3.5 and "a little over three seconds" in exporting
-    said = float(re.search(r"The move takes about (\d\.\d) s", testing).group(1))
-    assert 3.0 < said < 3.5 and abs(said - arrived) <= 0.1, (said, arrived)
-
-
-# ---- the home page's promise about the scripts -----------------------------------------------
-
-def test_the_home_page_describes_the_scripts_as_the_pages_present_them():
-    text = flat("index.md")
-    assert "line by line" not in text
-    assert "Every script is printed whole on its page" in text
-    long_ones = {"practice-3/05-position-control.md": "examples/example_3/scripts/arm_controller.py",
-                 "practice-5/04-control-script.md": "examples/example_5/scripts/ackermann.py"}
-    for page, script in long_ones.items():
-        assert f"{{% include_code {script} %}}" in (PAGES / page).read_text(encoding="utf-8")
-        source = (ROOT / script).read_text(encoding="utf-8")
-        assert len(source.splitlines()) > 150, f"{script} is one of the two long ones"
-        assert source.startswith('"""'), f"{script} opens with a docstring"
-    assert "the arm controller of Practice 3 and the car's script of Practice 5" in text
-    pages = " ".join(path.read_text(encoding="utf-8") for path in PAGES.glob("*/*.md"))
-    scripts = sorted(ROOT.glob("examples/example_*/scripts/*.py"))
-    for script in scripts:
-        assert f"{{% include_code {script.relative_to(ROOT).as_posix()} %}}" in pages, script
-    long = {s.relative_to(ROOT).as_posix() for s in scripts if len(s.read_text().splitlines()) > 150}
-    assert long == set(long_ones.values())
