@@ -153,3 +153,14 @@ def test_fixed_base_decides_in_load_package_and_the_world_link_in_the_commands(t
     assert "in Gazebo and in MuJoCo" not in entry
     assert "whether or not there is a world link" in entry and "fixed_base=False" in entry
     assert "free it when the URDF has no world link" in entry
+
+
+def test_without_sw2sim_the_fixed_base_grips_its_wheels():
+    """"A model you ... load without sw2sim needs the same exclusions whenever its base is fixed"."""
+    model = raw_mujoco((ROOT / "examples/example_1/urdf/example_1.urdf").read_text())
+    data = mujoco.MjData(model)
+    mujoco.mj_forward(model, data)
+    wheels = {model.body(f"{end}_{side}_wheel").id for end in ("front", "rear") for side in ("left", "right")}
+    pairs = {(model.geom_bodyid[c.geom1], model.geom_bodyid[c.geom2]) for c in data.contact[:data.ncon]}
+    assert {b for pair in pairs for b in pair} == wheels | {0}, "every wheel touches the world"
+    assert "load without `sw2sim`, needs the same exclusions" in flat("practice-1/04-testing-and-modifying.md")
