@@ -23,6 +23,7 @@ Everything started runs in a process group of its own and is stopped by `close()
 
 from __future__ import annotations
 
+import os
 import re
 import shlex
 import shutil
@@ -117,6 +118,7 @@ class Session:
     windows: list[str] = field(default_factory=list)   # "page.md:line: command" not run
     running: list[Running] = field(default_factory=list)
     nodes: list[Block] = field(default_factory=list)
+    stopped: list[int] = field(default_factory=list)   # every process id it has stopped
 
     def __enter__(self) -> Session:
         return self
@@ -302,16 +304,32 @@ class Session:
                                                             f"in {COMMAND_TIMEOUT:g} s")
 
     def stop_launches(self) -> None:
-        from sw2sim.ros.run import stop
         for r in [r for r in self.running if r.command.words[0] == "roslaunch"]:
             self.check_running()
-            stop(r.process)
+            self._stop(r)
             self.running.remove(r)
 
     def close(self) -> None:
-        from sw2sim.ros.run import stop
         for r in reversed(self.running):
-            stop(r.process)
+            self._stop(r)
+
+    def _stop(self, r: Running) -> None:
+        from sw2sim.ros.run import descendants, stop
+        self.stopped += [r.process.pid, *descendants(r.process.pid)]
+        stop(r.process)
+
+    def leftovers(self) -> list[int]:
+        """The processes it started (and those below them) that still run after close()."""
+        alive = []
+        for pid in self.stopped:
+            try:
+                os.kill(pid, 0)
+            except ProcessLookupError:
+                continue
+            except PermissionError:
+                pass
+            alive.append(pid)
+        return alive
 
 
 def _first_name(words: list[str]) -> str:

@@ -120,5 +120,6 @@ def test_page_ros_blocks(path, ros, tmp_path, record_property):
         # Read by pytest_terminal_summary in tests/conftest.py.
         record_property("ros_blocks_ran", len(session.ran))
         record_property("ros_windows", session.windows)
+    assert not session.leftovers(), f"processes left running: {session.leftovers()}"
     if fault:
         pytest.fail(fault, pytrace=False)
