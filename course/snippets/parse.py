@@ -248,9 +248,10 @@ class _Scan:
             return None
         r = _DATA_ROS.search(ial["body"])
         package = (r["dq"] if r["dq"] is not None else r["sq"]).strip() if r else ""
-        if not package or not re.fullmatch(r"[A-Za-z][\w]*", package):
-            self.error(end + 1, 'data-ros names the example package the block runs in: '
-                                '{: data-ros="example_3"}')
+        if not package or not re.fullmatch(r"[A-Za-z]\w*(/\.\.)?", package):
+            self.error(end + 1, 'data-ros names the example package the block runs in, or the '
+                                'folder that holds it: {: data-ros="example_3"} or '
+                                '{: data-ros="example_3/.."}')
             return None
         if info not in _ROS_LANGUAGES:
             self.error(end + 1, f"data-ros is for ```python nodes and ```bash commands, not {info!r}")
@@ -259,8 +260,8 @@ class _Scan:
             self.error(end + 1, "a block has data-ros (it runs under ROS) or data-skip (it does not), "
                                 "not both")
             return None
-        if not (self.root / "examples" / package).is_dir():
-            self.error(end + 1, f"data-ros: no package examples/{package}")
+        if not (self.root / "examples" / package.split("/")[0]).is_dir():
+            self.error(end + 1, f"data-ros: no package examples/{package.split('/')[0]}")
             return None
         return package
 

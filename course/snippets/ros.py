@@ -2,7 +2,10 @@
 Gazebo's place, as a reader following the page in terminals would.
 
 A ```bash block is split into its commands (a line ending in `\\` goes on), each run by
-bash in the package's folder:
+bash as in one terminal: a block starts in the folder its `data-ros` names (`example_1`,
+the package's copy, or `example_1/..`, the folder that holds it), and what a command
+changes of the shell (`cd`, `source devel/setup.bash`, `export`) holds for the next;
+HOME is a folder of the run's own.
 
 - `roslaunch`, `rosrun`, `rostopic echo` and a `rostopic pub` without `-1` keep running,
   as in a terminal of their own. A second `roslaunch` stops the first, as the reader's
@@ -11,7 +14,8 @@ bash in the package's folder:
 - Every other command must end, with status 0 (`grep` may say 1: nothing found). Before a
   command that names a topic or a service, the runner waits until it exists, as a reader
   waits for Gazebo to come up.
-- A command that opens a window (`rqt_plot`, `rviz`, ...) is not run; it is reported.
+- A command that opens a window (`rqt_plot`, `rviz`, a launch file that starts RViz) is
+  not run; it is reported.
 
 A ```python block is a node file of the package (`data-file`): the page's commands start
 it. At the end every node the page shows must be running, what keeps running must still
@@ -58,7 +62,7 @@ class Command:
 
     text: str
     location: str   # page.md:line of its first line
-    package: str
+    package: str    # the block's data-ros: the package, or a folder beside it
 
     @property
     def words(self) -> list[str]:
@@ -119,6 +123,7 @@ class Session:
     running: list[Running] = field(default_factory=list)
     nodes: list[Block] = field(default_factory=list)
     stopped: list[int] = field(default_factory=list)   # every process id it has stopped
+    cwd: Path | None = None    # the shell's folder, as the last command left it
 
     def __enter__(self) -> Session:
         return self
@@ -129,16 +134,21 @@ class Session:
     # -- set-up ------------------------------------------------------------------------
     def prepare(self) -> None:
         from sw2sim.ros.run import environment
-        packages = sorted({b.ros for b in self.page.ros_blocks})
+        packages = sorted({package_of(b.ros) for b in self.page.ros_blocks})
         source = self.folder / "src"
         for name in packages:
             if not (source / name).exists():
                 shutil.copytree(self.root / "examples" / name, source / name)
         env = environment(source / packages[0], realtime=0)
+        home = self.folder / "home"
+        home.mkdir(exist_ok=True)
         self.env = {**env, **{k: v for k, v in self.env.items() if k.startswith("ROS_")
                               and k != "ROS_PACKAGE_PATH"},
                     # what a terminal shows at once; a file would get it in blocks
-                    "PYTHONUNBUFFERED": "1"}
+                    "PYTHONUNBUFFERED": "1", "HOME": str(home)}
+        # Where the stand-in's packages are: kept on ROS_PACKAGE_PATH after every command,
+        # as Gazebo's stay when a workspace's setup.bash is sourced.
+        self.standins = env["ROS_PACKAGE_PATH"].split(os.pathsep)[-1]
         self.logs = self.folder / "logs"
         self.logs.mkdir(parents=True, exist_ok=True)
 
@@ -149,28 +159,30 @@ class Session:
         if not blocks:
             return
         self.prepare()
+        self.cwd = (self.folder / "src" / blocks[0].ros).resolve()
         if self.page.ros_running:
             self.command(Command(self.page.ros_running, f"{self.page.path}:1 (ros_running)",
                                  blocks[0].ros))
         for block in blocks:
             if block.language == "bash":
+                self.cwd = (self.folder / "src" / block.ros).resolve()
                 for command in commands(block):
                     self.command(command)
             else:
                 self.node(block)
 
     def node(self, block: Block) -> None:
-        shown = block.data_file or block.include
-        if not shown or not shown.startswith(f"examples/{block.ros}/"):
+        shown, package = block.data_file or block.include, package_of(block.ros)
+        if not shown or not shown.startswith(f"examples/{package}/"):
             raise RosBlockError(block.location, f"a ROS node block shows a file of examples/"
-                                                f"{block.ros}/ (include_code and data-file)")
+                                                f"{package}/ (include_code and data-file)")
         self.nodes.append(block)
 
     def command(self, command: Command) -> None:
         words = command.words
         if not words:
             return
-        if command.program in WINDOWS:
+        if command.program in WINDOWS or self.launches_a_window(command):
             self.windows.append(f"{command.location}: {command.text} (opens a window)")
             return
         self.wait_for_names(command)
@@ -187,7 +199,7 @@ class Session:
     def start(self, command: Command) -> Running:
         log = self.logs / f"{len(self.running) + len(self.ran):02d}-{command.program}.log"
         with open(log, "wb") as out:
-            process = subprocess.Popen(["bash", "-c", command.text], cwd=self.cwd(command),
+            process = subprocess.Popen(["bash", "-c", command.text], cwd=self.cwd,
                                        env=self.env, stdout=out, stderr=subprocess.STDOUT,
                                        stdin=subprocess.DEVNULL, start_new_session=True)
         running = Running(command, process, log)
@@ -195,8 +207,12 @@ class Session:
         return running
 
     def finish(self, command: Command) -> None:
+        """Run a command to its end, and keep what it changed of the shell."""
+        state = self.folder / "shell"
+        script = (f"{command.text}\nstatus=$?\npwd > '{state}.cwd'\nenv -0 > '{state}.env'\n"
+                  "exit $status\n")
         try:
-            done = subprocess.run(["bash", "-c", command.text], cwd=self.cwd(command),
+            done = subprocess.run(["bash", "-c", script], cwd=self.cwd,
                                   env=self.env, capture_output=True, text=True,
                                   timeout=COMMAND_TIMEOUT, start_new_session=True)
         except subprocess.TimeoutExpired:
@@ -207,9 +223,24 @@ class Session:
             raise RosBlockError(command.location,
                                 f"`{command.text}` exited with {done.returncode}:\n"
                                 f"{(done.stdout + done.stderr)[-1500:]}")
+        self.cwd = Path(Path(f"{state}.cwd").read_text().strip())
+        pairs = Path(f"{state}.env").read_bytes().decode(errors="replace").split("\0")
+        self.env = dict(p.split("=", 1) for p in pairs if "=" in p)
+        paths = self.env.get("ROS_PACKAGE_PATH", "").split(os.pathsep)
+        if self.standins not in paths:
+            self.env["ROS_PACKAGE_PATH"] = os.pathsep.join([*filter(None, paths), self.standins])
 
-    def cwd(self, command: Command) -> Path:
-        return self.folder / "src" / command.package
+    def launches_a_window(self, command: Command) -> bool:
+        """`roslaunch PACKAGE FILE` of a launch file that starts RViz or a GUI."""
+        w = command.words
+        if w[:1] != ["roslaunch"] or len(w) < 3:
+            return False
+        for top in (self.folder / "src", Path(self.env.get("HOME", "/nonexistent"))):
+            for launch in top.rglob(f"{w[1]}/launch/{w[2]}"):
+                text = launch.read_text(errors="replace")
+                if any(f'pkg="{gui}"' in text for gui in WINDOWS):
+                    return True
+        return False
 
     # -- waiting like a reader ---------------------------------------------------------
     def master(self):
@@ -330,6 +361,11 @@ class Session:
                 pass
             alive.append(pid)
         return alive
+
+
+def package_of(ros: str) -> str:
+    """The package a `data-ros` value names: its first folder."""
+    return ros.split("/", 1)[0]
 
 
 def _first_name(words: list[str]) -> str:

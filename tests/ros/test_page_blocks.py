@@ -23,7 +23,8 @@ def test_the_practices_with_ros_have_ros_blocks():
     """Pages of every practice whose package has a ROS node show it running; a page that
     lost its data-ros marks would silently leave the run."""
     names = {p.relative_to(ROOT).as_posix() for p in PAGES}
-    for page in ("practice-1/05-custom-node.md", "practice-3/04-controllers.md",
+    for page in ("practice-1/04-testing-and-modifying.md", "practice-1/05-custom-node.md",
+                 "practice-3/04-controllers.md",
                  "practice-3/05-position-control.md", "practice-4/04-testing-and-scripting.md",
                  "practice-5/04-control-script.md"):
         assert f"_pages/{page}" in names
