@@ -73,11 +73,12 @@ rule("mass-not-positive", ERROR, "inertia", "A mass is negative, or a moving lin
      "nothing",
      symptom="MuJoCo stops with \"mass and inertia of moving bodies must be larger than "
              "mjMINVAL\"; Gazebo ignores the link or the model flies apart.",
-     cause="A mass override left at zero, a link whose parts are all hidden or suppressed, "
-           "or an <inertial> written by hand with a placeholder value.",
+     cause="A link with no components, or whose components are all suppressed (SolidWorks "
+           "leaves suppressed components out of mass properties), or an <inertial> written "
+           "by hand with a placeholder value.",
      fix="Set the mass to the part's real mass (SolidWorks: Mass Properties, or the "
          "exporter's mass field) and export again.",
-     seen_in=("mujoco#739", "solidworks_urdf_exporter#172"),
+     seen_in=("mujoco#739",),
      repair=RECOMPUTE)
 rule("mass-tiny", WARNING, "inertia", "A moving link weighs less than a milligram",
      symptom="MuJoCo loads the model, but the light link jitters, drifts or makes the "
@@ -113,18 +114,24 @@ rule("inertia-triangle", ERROR, "inertia", "The principal moments break A + B >=
 rule("com-outside-geometry", WARNING, "inertia", "The centre of mass lies outside the link",
      symptom="The link leans, tips or swings as if weighted on one side; the model falls "
              "over where the real machine stands.",
-     cause="The link's mass properties include parts that are not in its mesh (hidden or "
-           "suppressed bodies, or parts of other links), or the inertia of a multi-part link "
-           "was combined without moving it to the link's frame.",
+     cause="The mesh and the mass properties describe different parts: the mesh was "
+           "simplified or replaced after the export, or the parts that carry the mass were "
+           "left out of Link Components while a simplified shell stands in for them (#101); "
+           "or the inertia of a multi-part link was combined without moving it to the link's "
+           "frame.",
      fix="Check the link's components in the exporter dialog and SolidWorks' Mass "
          "Properties of exactly those parts, then export again.",
      seen_in=("solidworks_urdf_exporter#117", "solidworks_urdf_exporter#101"))
 rule("density-implausible", WARNING, "inertia", "The mass does not fit the mesh's volume",
      symptom="The link behaves as if made of foam or of something denser than any metal.",
-     cause="The mass was set by hand (or overridden) and does not match the part, or hidden "
-           "parts add mass that the mesh does not show.",
+     cause="The mass was typed by hand and does not fit the part; the part has no material "
+           "(SolidWorks then uses 1000 kg/m³); its mass was set with SolidWorks' Override "
+           "Mass Properties, which the exporter ignores (#172, #164); or the parts that carry "
+           "the mass were left out of Link Components while a simplified shell stands in for "
+           "them (#101).",
      fix="Compare the link's mass with its volume in SolidWorks' Mass Properties and set the "
-         "part's material, or correct the mass.",
+         "part's material (a custom one of the density the wanted mass needs), or correct "
+         "the mass.",
      seen_in=("solidworks_urdf_exporter#101", "solidworks_urdf_exporter#164"),
      repair=RECOMPUTE)
 
