@@ -191,3 +191,7 @@ FIGURES = [
     Figure(f"{MEDIA}/not_ideal.png", not_ideal, SIM, "Equal speeds and parallel steering"),
     Figure(f"{MEDIA}/rviz.png", rviz_picture(PACKAGE), [PACKAGE], "The vehicle in RViz, as display.launch opens it"),
 ]
+
+from ...ackermann_diagram import draw as turning_centre  # noqa: E402
+FIGURES.append(Figure(f"{MEDIA}/turning_centre.png", turning_centre, ["course/practices/practice_5/design.py"],
+                      "The turning centre and Equation 4's triangles"))
