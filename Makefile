@@ -87,6 +87,9 @@ ROS_PTH := zz-debian-ros.pth
 $(STAMPS)/ros: Makefile $(STAMPS)/venv
 	@if apt-cache show python3-rospy >/dev/null 2>&1 || \
 	    { $(SUDO) apt-get update -qq >/dev/null 2>&1 && apt-cache show python3-rospy >/dev/null 2>&1; }; then \
+	    absent=$$(for p in $(ROS_PACKAGES); do apt-cache show $$p >/dev/null 2>&1 || echo $$p; done); \
+	fi; \
+	if apt-cache show python3-rospy >/dev/null 2>&1 && [ -z "$$absent" ]; then \
 	    missing=$$(for p in $(ROS_PACKAGES); do \
 	        dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null | grep -q '^install ok installed' || echo $$p; done); \
 	    if [ -n "$$missing" ]; then \
@@ -95,6 +98,8 @@ $(STAMPS)/ros: Makefile $(STAMPS)/venv
 	    fi; \
 	    site=$$($(PY) -c 'import sysconfig; print(sysconfig.get_path("purelib"))'); \
 	    echo /usr/lib/python3/dist-packages > "$$site/$(ROS_PTH)"; \
+	elif [ -n "$$absent" ]; then \
+	    echo "ROS 1: this distribution lacks" $$absent "; the ROS tests will be skipped."; \
 	else \
 	    echo "ROS 1: this distribution ships no ROS 1 packages (python3-rospy); the ROS tests will be skipped."; \
 	fi
