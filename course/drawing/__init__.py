@@ -19,7 +19,7 @@ The modules, each importing only those listed before it:
 
 from .assembly import BALLOON_R, assembly_drawing_svg, link_poses
 from .dimensions import angle_degrees, check_dimensions, dimension_text
-from .sheet import part_drawing_svg
+from .sheet import PartSheet, part_drawing_svg, part_sheet
 from .svg import text_width
 
 __all__ = [
@@ -29,6 +29,8 @@ __all__ = [
     "check_dimensions",
     "dimension_text",
     "link_poses",
+    "PartSheet",
     "part_drawing_svg",
+    "part_sheet",
     "text_width",
 ]

@@ -27,6 +27,9 @@ from .svg import Circle, Fill, Line, Poly, Text, bbox, document, moved, text_wid
 
 BALLOON_R = 4.0
 JOINT_CROSS, JOINT_ARROW = 1.8, 10.0  # sheet mm
+# The joints' names: 4.1 mm reads 10 px high when the sheet (297 mm) is shown 736 px wide.
+JOINT_TEXT = 4.1
+JOINT_PITCH = 1.3 * JOINT_TEXT  # between the baselines of two names on the same side
 
 
 def _rpy_matrix(rpy) -> np.ndarray:
@@ -229,7 +232,9 @@ def _balloons(anchors: list, box, k: float, avoid_y=()) -> list:
 def _joint_marks(robot, poses, k: float, box) -> list:
     """Each joint's origin (a cross) and axis (an arrow, or a circled dot when the axis points
     at the viewer, a circle alone when away) in the top view; its name beside the view, on a
-    leader, on the side of the view the joint is on."""
+    leader, on the side of the view the joint is on. Joints that share an origin have their
+    names one under the other; names that would touch are spread apart, the leader bending to
+    reach them."""
     d, h, v = (np.array(x) for x in VIEWS["top"])
     middle = (box[0] + box[2]) / 2
     out = []
@@ -259,12 +264,31 @@ def _joint_marks(robot, poses, k: float, box) -> list:
             out.append(Circle(x, y, 2.5, "joint"))
             if axis @ d < 0:  # pointing at the viewer: a dot
                 out.append(Circle(x, y, 0.6, "jointfill"))
-    for (x, y), joint_names in names.items():
-        right = x >= middle
+    for right in (False, True):
+        side = sorted(((y, x, n) for (x, y), n in names.items() if (x >= middle) == right))
+        # each origin's names as a block of lines centred on it, blocks pushed apart downwards
+        # where they would touch, then the whole side moved back up to stay centred
+        heights = [(len(n) - 1) * JOINT_PITCH for _, _, n in side]
+        tops = [y - h / 2 for (y, _, _), h in zip(side, heights)]
+        for i in range(1, len(tops)):
+            tops[i] = max(tops[i], tops[i - 1] + heights[i - 1] + JOINT_PITCH)
+        if tops:
+            wanted = [y - h / 2 for (y, _, _), h in zip(side, heights)]
+            shift = min(0.0, float(np.mean(np.array(wanted) - np.array(tops))))
+            tops = [t + shift for t in tops]
+            for i in range(1, len(tops)):  # the shift keeps the gaps
+                tops[i] = max(tops[i], tops[i - 1] + heights[i - 1] + JOINT_PITCH)
         end = box[2] + 3.0 if right else box[0] - 3.0
-        out.append(Line(x, y, end, y, "jointleader"))
-        out.append(Text(end + (1.0 if right else -1.0), y + 0.7, ", ".join(joint_names), 2.0,
-                         "start" if right else "end", style="jointtext"))
+        knee = end - 2.0 if right else end + 2.0
+        for (y, x, joint_names), top, h in zip(side, tops, heights):
+            at = top + h / 2
+            if abs(at - y) < 0.01:
+                out.append(Line(x, y, end, y, "jointleader"))
+            else:
+                out += [Line(x, y, knee, y, "jointleader"), Line(knee, y, end, at, "jointleader")]
+            for i, name in enumerate(joint_names):
+                out.append(Text(end + (1.0 if right else -1.0), top + i * JOINT_PITCH + 0.36 * JOINT_TEXT,
+                                name, JOINT_TEXT, "start" if right else "end", style="jointtext"))
     return out
 
 
@@ -350,14 +374,14 @@ def assembly_drawing_svg(robot) -> str:
             layers = [("", [Poly(_rings(p.outline.envelope, k), True) for p in views[v]])]
         box = bbox([q for _, prims in layers for q in prims])
         notes = _joint_marks(robot, poses, k, box) if v == "top" else []
-        leaders = [n.y1 for n in notes if isinstance(n, Line) and n.style == "jointleader"]
+        leaders = [y for n in notes if isinstance(n, Line) and n.style == "jointleader" for y in (n.y1, n.y2)]
         notes += _balloons(anchors[v], bbox([Poly((((box[0], box[1]), (box[2], box[3])),))] + notes), k,
                            leaders)
         notes += view_label([q for _, prims in layers for q in prims] + notes, v.upper(), (box[0] + box[2]) / 2)
         if v == "top":  # a key to the joint marks, under the view's name
             y = notes[-1].y + 4.5
-            notes.append(Text((box[0] + box[2]) / 2, y, "Joints: + origin, → axis (the URDF joint frames)",
-                               2.5, "middle", style="jointtext"))
+            notes.append(Text((box[0] + box[2]) / 2, y + JOINT_TEXT - 2.5, "Joints: + origin, → axis",
+                               JOINT_TEXT, "middle", style="jointtext"))
         return layers + [(f"{v}-notes", notes)]
 
     def extent(layers):

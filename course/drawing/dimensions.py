@@ -189,20 +189,30 @@ def _angle_draft(dim: Angle, k: float) -> _DimDraft:
     return _DimDraft(lines, [(label, None, None)], segments)
 
 
-def view_dimensions(dims: list[Dimension | Angle], k: float, centre: tuple[float, float]) -> list:
-    """All dimensions of one view, each text placed clear of the others' texts and lines."""
+def view_dimensions(dims: list[Dimension | Angle], k: float, centre: tuple[float, float],
+                    placed: list | None = None) -> list:
+    """All dimensions of one view, each text placed clear of the others' texts and lines.
+
+    Texts with one place (inside their dimension line) are placed first, then the others, each
+    at the first of its places clear of what is placed already. When `placed` is a list, each
+    dimension is appended to it with the text it was given, as (dimension, Text): what the sheet
+    shows for it."""
     drafts = [_dimension_draft(d, k, centre) for d in dims]
     blockers = [LineString(seg) for dr in drafts for seg in dr.segments]
-    out = []
-    for dr in drafts:
-        chosen = dr.options[0]
-        for option in dr.options:
+    chosen: dict[int, tuple] = {}
+    for i in sorted(range(len(drafts)), key=lambda i: len(drafts[i].options) > 1):
+        chosen[i] = drafts[i].options[0]
+        for option in drafts[i].options:
             box = shapely.box(*bbox([option[0]]))
             if not any(box.intersects(b) for b in blockers):
-                chosen = option
+                chosen[i] = option
                 break
-        text, p, q = chosen
-        blockers.append(shapely.box(*bbox([text])).buffer(0.5))
+        blockers.append(shapely.box(*bbox([chosen[i][0]])).buffer(0.5))
+    out = []
+    for i, (dim, dr) in enumerate(zip(dims, drafts)):
+        text, p, q = chosen[i]
+        if placed is not None:
+            placed.append((dim, text))
         out += [*dr.lines, *([] if p is None else [Line(*p, *q)]), text]
     return out
 

@@ -7,6 +7,8 @@ and `part_drawing_svg`: a part in three views with dimensions.
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 
 from ..parts import Part
@@ -127,10 +129,13 @@ def view_label(prims, text: str, centre_x: float) -> list:
 # --- the part drawing ----------------------------------------------------------------------------
 
 
-def _part_view(part: Part, solid: Solid, view: str, k: float, traced: ViewLines | None) -> list:
+def _part_view(part: Part, solid: Solid, view: str, k: float, traced: ViewLines | None,
+               placed: list | None = None) -> list:
     """Everything of one view, in sheet mm about the part's origin: lines, dimensions, name.
 
-    With `traced` None only the extents are needed (the outline box stands in for the lines)."""
+    With `traced` None only the extents are needed (the outline box stands in for the lines).
+    `placed`, when given, receives each dimension of the view with its text (see
+    `view_dimensions`)."""
     proj = Projector(solid, view)
     pts = proj.project(np.concatenate([shape_corners(s) for s in solid.added]))
     h0, v0 = pts.min(0)
@@ -142,7 +147,7 @@ def _part_view(part: Part, solid: Solid, view: str, k: float, traced: ViewLines 
         prims = [outline, Line(k * h0 - c, -k * v0 + c, k * h1 + c, -k * v1 - c)]
     else:
         prims = view_prims(traced, proj, k)
-    prims += view_dimensions([d for d in part.dimensions if d.view == view], k, centre)
+    prims += view_dimensions([d for d in part.dimensions if d.view == view], k, centre, placed)
     return prims + view_label(prims, view.upper(), centre[0])
 
 
@@ -163,8 +168,26 @@ def _first_angle(boxes: dict) -> dict:
     return {"front": (0.0, 0.0), "side": (-dx, 0.0), "top": (0.0, dy)}
 
 
+@dataclass
+class PartSheet:
+    """A part's drawing before it is written out: its layers (name, primitives) in sheet mm,
+    and every dimension with the text the sheet shows for it, as (view, dimension, Text)."""
+
+    title: str
+    layers: list
+    dimensions: list
+
+    def svg(self) -> str:
+        return document(self.layers, self.title)
+
+
 def part_drawing_svg(part: Part) -> str:
     """The part's drawing: three first-angle views with dimensions, frame and title block."""
+    return part_sheet(part).svg()
+
+
+def part_sheet(part: Part) -> PartSheet:
+    """The part's drawing sheet as primitives, with the dimensions placed on it."""
     check_dimensions(part)
     solid = Solid(part.features)
     for label, factor in SCALES:
@@ -178,14 +201,16 @@ def part_drawing_svg(part: Part) -> str:
             break
     else:
         raise ValueError(f"part {part.name!r} does not fit an A4 sheet at 1:100")
-    layers = []
+    layers, dims = [], []
     for view in VIEWS:
         traced = trace_view(solid, view, k)
-        prims = _part_view(part, solid, view, k, traced)
+        placed: list = []
+        prims = _part_view(part, solid, view, k, traced, placed)
         dx, dy = origin[0] + offsets[view][0], origin[1] + offsets[view][1]
         layers.append((f"view-{view}", moved(prims, dx, dy)))
+        dims += [(view, dim, text.moved(dx, dy)) for dim, text in placed]
     m = part.material
     block = title_block(part.title or part.name, f"{part.name}.SLDPRT", m.name,
                          f"{fmt(m.density)} kg/m³", f"{part.mass:.3f} kg", label)
     layers.append(("sheet", frame() + block))
-    return document(layers, f"{part.title or part.name} ({part.name}.SLDPRT)")
+    return PartSheet(f"{part.title or part.name} ({part.name}.SLDPRT)", layers, dims)

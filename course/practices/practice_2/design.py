@@ -119,10 +119,12 @@ def _base_dimensions() -> list:
     gap = ly / 2 + STRAIGHT / 2           # across the notch between two arms, arrows on its sides
     return [
         Dimension("top", mm(-ARM_X + w / 2, gap, 0), mm(ARM_X - w / 2, gap, 0), "h", 1e-6),
+        Dimension("top", mm(ARM_X - w / 2, -gap, 0), mm(ARM_X + w / 2, -gap, 0), "h", 1e-6),
         Dimension("top", mm(-lx / 2, -ly / 2, 0), mm(-lx / 2, ly / 2, 0), "v", -0.12),
         Dimension("top", mm(*corner, 0), mm(corner[0], -ly / 2, 0), "v", -0.02),
         angle, width, bent, axle, dia,
         Dimension("front", mm(-lx / 2, 0, -lz / 2), mm(-lx / 2, 0, lz / 2), "v", -0.04),
+        Dimension("front", mm(-lx / 2, 0, -lz / 2), mm(lx / 2, 0, -lz / 2), "h", -0.02),
     ]
 
 

@@ -68,6 +68,7 @@ def base() -> Part:
             Dimension("front", mm(-fx / 2, 0, 0), mm(fx / 2, 0, 0), "h", -0.04),
             Dimension("front", mm(-r, 0, PIVOT_HEIGHT), mm(r, 0, PIVOT_HEIGHT), "h", 0.04, f"Ø{COLUMN_DIAMETER}"),
             Dimension("front", mm(fx / 2, 0, 0), mm(fx / 2, 0, fz), "v", 0.03),
+            Dimension("front", mm(r, 0, fz), mm(r, 0, PIVOT_HEIGHT), "v", 0.03),
             Dimension("front", mm(-fx / 2, 0, 0), mm(-fx / 2, 0, PIVOT_HEIGHT), "v", -0.05),
             Dimension("top", mm(fx / 2, -fy / 2, 0), mm(fx / 2, fy / 2, 0), "v", 0.04),
         ],
@@ -83,6 +84,14 @@ def _rounded_bar(length: float) -> list:
     ]
 
 
+def _round_end(centre, degrees: float) -> Dimension:
+    """The radius of a bar's round end, from its centre out to the arc at `degrees` (top view)."""
+    r = mm(BAR_WIDTH / 2)
+    a = math.radians(degrees)
+    x, y, z = centre
+    return Dimension("top", centre, (x + r * math.cos(a), y + r * math.sin(a), z), "a", 0.0, f"R{BAR_WIDTH // 2}")
+
+
 def middle_arm() -> Part:
     t, w, L = BAR_THICKNESS, BAR_WIDTH, ARM_LENGTH
     return Part(
@@ -94,12 +103,13 @@ def middle_arm() -> Part:
             Dimension("top", mm(0, 0, t), mm(L, 0, t), "h", 0.05, f"{L} (axis to axis)"),
             Dimension("top", mm(L + w / 2, -w / 2, t), mm(L + w / 2, w / 2, t), "v", 0.03),
             Dimension("front", mm(L + w / 2, 0, 0), mm(L + w / 2, 0, t), "v", 0.03),
+            _round_end(mm(L, 0, t), 45),
         ],
     )
 
 
 def end_arm() -> Part:
-    t, L = BAR_THICKNESS, ARM_LENGTH
+    t, L, w = BAR_THICKNESS, ARM_LENGTH, BAR_WIDTH
     px, (pl, pw) = PALM_X, PALM
     finger_len = L - (px + pl)
     finger_y = FINGER_GAP / 2 + FINGER_WIDTH / 2
@@ -113,8 +123,14 @@ def end_arm() -> Part:
         dimensions=[
             Dimension("top", mm(0, -pw / 2, t), mm(L, -pw / 2, t), "h", -0.05, f"{L} (axis to fingertips)"),
             Dimension("top", mm(0, pw / 2, t), mm(px, pw / 2, t), "h", 0.04),
+            Dimension("top", mm(px, pw / 2, t), mm(px + pl, pw / 2, t), "h", 0.04),
+            Dimension("top", mm(px + pl, finger_y + FINGER_WIDTH / 2, t), mm(L, finger_y + FINGER_WIDTH / 2, t),
+                      "h", 0.04 + (pw / 2 - finger_y - FINGER_WIDTH / 2) / 1000),
+            Dimension("top", mm(px / 2, -w / 2, t), mm(px / 2, w / 2, t), "v", 1e-6),
+            _round_end(mm(0, 0, t), 135),
             Dimension("top", mm(L, -pw / 2, t), mm(L, pw / 2, t), "v", 0.04),
             Dimension("top", mm(L, -FINGER_GAP / 2, t), mm(L, FINGER_GAP / 2, t), "v", 0.02),
+            Dimension("top", mm(L, FINGER_GAP / 2, t), mm(L, FINGER_GAP / 2 + FINGER_WIDTH, t), "v", 0.02),
             Dimension("front", mm(L, 0, 0), mm(L, 0, t), "v", 0.03),
         ],
     )

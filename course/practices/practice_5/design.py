@@ -126,6 +126,8 @@ def chassis() -> Part:
     bx, bz = CROSS_MEMBER
     l, half = WHEELBASE, TRACK / 2
     zc = PLATE_BOTTOM + lz / 2
+    length, t = FORK_PLATE
+    fork, post = FORK_INNER + t, KINGPIN_DIAMETER / 2
     features = [
         Box(mm(lx, ly, lz), mm(PLATE_BACK + lx / 2, 0, zc)),
         Box(mm(bx, 2 * BEAM_HALF, bz), mm(0, 0, zc)),                   # rear beam
@@ -157,6 +159,19 @@ def chassis() -> Part:
             Dimension("side", mm(l, half - HUB_DIAMETER / 2, PLATE_TOP), mm(l, half + HUB_DIAMETER / 2, PLATE_TOP),
                       "h", 0.03, f"Ø{HUB_DIAMETER}"),
             Dimension("side", mm(0, -half, -FORK_BELOW), mm(0, -half, PLATE_BOTTOM), "v", -0.05),
+            # the beams' width, and the rear forks (the knuckle's shape, with a post for its kingpin)
+            Dimension("top", mm(l - bx / 2, -half, PLATE_TOP), mm(l + bx / 2, -half, PLATE_TOP), "h", -0.04),
+            Dimension("front", mm(-length / 2, 0, -FORK_BELOW), mm(length / 2, 0, -FORK_BELOW), "h", -0.015),
+            Dimension("side", mm(0, half - fork, -FORK_BELOW), mm(0, half + fork, -FORK_BELOW), "h", -0.015),
+            Dimension("side", mm(0, half + fork, -FORK_BELOW), mm(0, half + fork, BRIDGE_TOP), "v", 0.015),
+            Dimension("side", mm(0, half + fork, BRIDGE_BOTTOM), mm(0, half + fork, BRIDGE_TOP), "v", 0.06),
+            Dimension("side", mm(0, half + fork, BRIDGE_TOP), mm(0, half + post, PLATE_BOTTOM), "v", 0.06),
+            Dimension("side", mm(0, -half - fork, -FORK_BELOW), mm(0, -half - fork + t, -FORK_BELOW), "h",
+                      -0.015),
+            Dimension("side", mm(0, -half - post, BRIDGE_TOP), mm(0, -half + post, BRIDGE_TOP), "h",
+                      -0.045 - (FORK_BELOW + BRIDGE_TOP) / 1000),
+            Dimension("side", mm(0, -half + fork, -AXLE_PIN_DIAMETER / 2), mm(0, -half + fork, AXLE_PIN_DIAMETER / 2),
+                      "v", 0.015, f"Ø{AXLE_PIN_DIAMETER} pin"),
         ],
     )
 
@@ -172,11 +187,17 @@ def knuckle(name: str = "knuckle") -> Part:
         features=_fork(),
         dimensions=[
             Dimension("side", mm(0, -FORK_INNER, -FORK_BELOW), mm(0, FORK_INNER, -FORK_BELOW), "h", -0.015),
-            Dimension("side", mm(0, -FORK_INNER - t, BRIDGE_TOP), mm(0, FORK_INNER + t, BRIDGE_TOP), "h",
-                      0.035),
+            Dimension("side", mm(0, FORK_INNER, -FORK_BELOW), mm(0, FORK_INNER + t, -FORK_BELOW), "h", -0.015),
+            Dimension("side", mm(0, -FORK_INNER - t, -FORK_BELOW), mm(0, FORK_INNER + t, -FORK_BELOW), "h",
+                      -0.03),
             Dimension("side", mm(0, FORK_INNER + t, -FORK_BELOW), mm(0, FORK_INNER + t, 0), "v", 0.015),
             Dimension("side", mm(0, FORK_INNER + t, 0), mm(0, FORK_INNER + t, BRIDGE_TOP), "v", 0.015),
-            Dimension("side", mm(0, -FORK_INNER - t, 0), mm(0, -FORK_INNER - t, PLATE_BOTTOM), "v", -0.015),
+            Dimension("side", mm(0, FORK_INNER + t, -FORK_BELOW), mm(0, FORK_INNER + t, BRIDGE_TOP), "v", 0.03),
+            Dimension("side", mm(0, -FORK_INNER - t, BRIDGE_BOTTOM), mm(0, -FORK_INNER - t, BRIDGE_TOP), "v",
+                      -0.015),
+            Dimension("side", mm(0, -FORK_INNER - t, BRIDGE_TOP), mm(0, -KINGPIN_DIAMETER / 2, PLATE_BOTTOM), "v",
+                      -0.015),
+            Dimension("side", mm(0, -FORK_INNER - t, 0), mm(0, -FORK_INNER - t, PLATE_BOTTOM), "v", -0.03),
             Dimension("side", mm(0, -KINGPIN_DIAMETER / 2, PLATE_BOTTOM),
                       mm(0, KINGPIN_DIAMETER / 2, PLATE_BOTTOM), "h", 0.012, f"Ø{KINGPIN_DIAMETER}"),
             Dimension("front", mm(-length / 2, 0, -FORK_BELOW), mm(length / 2, 0, -FORK_BELOW), "h", -0.015),
