@@ -11,6 +11,8 @@ HOME is a folder of the run's own.
   as in a terminal of their own. A second `roslaunch` stops the first, as the reader's
   Ctrl-C does. After a launch the runner waits until the nodes it starts have registered
   and simulated time runs.
+- `rostopic pub -1` sends its message at once and returns 3 s later, with status 0; the
+  runner goes on once it is sent.
 - Every other command must end, with status 0 (`grep` may say 1: nothing found). Before a
   command that names a topic or a service, the runner waits until it exists, as a reader
   waits for Gazebo to come up.
@@ -42,7 +44,7 @@ WINDOWS = frozenset({"rqt_plot", "rviz", "rqt", "rqt_graph", "rqt_console", "rqt
                      "rqt_publisher", "rqt_ez_publisher", "joint_state_publisher_gui"})
 COMMAND_TIMEOUT = 30.0   # s for a command that ends, or for what it names to exist
 SETTLE_TIMEOUT = 30.0    # s for a launch to come up
-QUIET = 1.0              # s without a new node: the launch is up
+QUIET = 0.5              # s without a new node: the launch is up
 # What a launch must not print.
 LAUNCH_FAULTS = re.compile(r"Traceback \(most recent call last\)|process has died|\[ERROR\]"
                            r"|^ERROR:", re.MULTILINE)
@@ -86,6 +88,14 @@ class Command:
         if w[:2] in (["rostopic", "echo"], ["rostopic", "hz"]):
             return True
         return w[:2] == ["rostopic", "pub"] and not {"-1", "--once"} & set(w)
+
+
+    @property
+    def publishes_once(self) -> bool:
+        """`rostopic pub -1`: it publishes at once, then keeps the message latched for
+        3 s before it returns."""
+        w = self.words
+        return w[:2] == ["rostopic", "pub"] and bool({"-1", "--once"} & set(w))
 
 
 def commands(block: Block) -> list[Command]:
@@ -192,6 +202,8 @@ class Session:
             self.start(command)
             if words[0] == "roslaunch":
                 self.settle(self.running[-1])
+        elif command.publishes_once:
+            self.published(self.start(command))
         else:
             self.finish(command)
         self.ran.append(f"{command.location}: {command.text}")
@@ -241,6 +253,20 @@ class Session:
                 if any(f'pkg="{gui}"' in text for gui in WINDOWS):
                     return True
         return False
+
+    def published(self, r: Running) -> None:
+        """Go on once `rostopic pub -1` has sent its message (it then holds it latched for
+        subscribers for 3 s and returns; check() wants status 0 of it at the end)."""
+        deadline = time.monotonic() + COMMAND_TIMEOUT
+        while time.monotonic() < deadline:
+            if "publishing and latching" in _tail(r.log):
+                return
+            if r.process.poll() not in (None, 0):
+                raise RosBlockError(r.command.location, f"`{r.command.text}` exited with "
+                                                        f"{r.process.returncode}:\n{_tail(r.log)}")
+            time.sleep(0.05)
+        raise RosBlockError(r.command.location, f"`{r.command.text}` published nothing in "
+                                                f"{COMMAND_TIMEOUT:g} s:\n{_tail(r.log)}")
 
     # -- waiting like a reader ---------------------------------------------------------
     def master(self):
