@@ -9,7 +9,6 @@ from pathlib import Path
 
 import mujoco
 import numpy as np
-import pytest
 
 from sw2sim.loader import load_package, world_fixed
 from packages import EXAMPLES
@@ -65,12 +64,21 @@ def poses_from_mujoco(model, data) -> dict[str, np.ndarray]:
     return poses
 
 
-@pytest.mark.parametrize("n", practice_numbers())
-def test_robot_state_publisher_agrees_with_mujoco(ros, n):
+def test_robot_state_publisher_agrees_with_mujoco(ros):
+    """Every example in turn, under one master: the publisher is started on the example's
+    description and stopped before the next."""
+    from sw2sim.ros.run import stop
+    for n in practice_numbers():
+        publisher = agrees(ros, n)
+        stop(publisher)
+
+
+def agrees(ros, n: int):
+    """Check example n; return its robot_state_publisher process."""
     package = EXAMPLES / f"example_{n}"
     urdf = next((package / "urdf").glob("*.urdf")).read_text()
     assert ros.run("rosparam", "set", "/robot_description", urdf).returncode == 0
-    ros.start(ROBOT_STATE_PUBLISHER, name="robot_state_publisher")
+    publisher = ros.start(ROBOT_STATE_PUBLISHER, name=f"robot_state_publisher_{n}")
 
     model = load_package(package, fixed_base=world_fixed(package), scene=False).compile()
     data = mujoco.MjData(model)
@@ -94,7 +102,8 @@ def test_robot_state_publisher_agrees_with_mujoco(ros, n):
     assert set(seen) == set(expected) - {BASE}, (sorted(seen), sorted(expected))
     for frame, pose in seen.items():
         mine = expected[frame]
-        assert np.allclose(pose[:3, 3], mine[:3, 3], atol=1e-4), frame
+        assert np.allclose(pose[:3, 3], mine[:3, 3], atol=1e-4), (n, frame)
         turn = pose[:3, :3].T @ mine[:3, :3]
         angle = np.arccos(np.clip((np.trace(turn) - 1) / 2, -1, 1))
-        assert angle < 1e-4, (frame, angle)
+        assert angle < 1e-4, (n, frame, angle)
+    return publisher
