@@ -30,7 +30,8 @@ from course.snippets import DEFAULT_TIMEOUT, parse_page
 from repository import ROOT, practice_numbers
 PAGES = ROOT / "_pages" / "reference"
 EXAMPLE_3 = ROOT / "examples" / "example_3"
-# The reference pages of this file, in reading order: (file, address).
+# The reference pages of this file, in reading order: (file, address). The first, Getting
+# started, comes before the practices in the navigation; the others make its Reference section.
 REFERENCE = [
     ("01-getting-started.md", "/reference/getting-started/"),
     ("02-exporter.md", "/reference/exporter/"),
@@ -65,11 +66,14 @@ def test_reference_pages_are_a_section_of_the_navigation_in_order():
     sections = [item for item in nav if item.get("title") == "Reference"]
     assert len(sections) == 1, "one 'Reference' section in _data/navigation.yml"
     urls = [child["url"] for child in sections[0]["children"]]
-    ours = [url for _, url in REFERENCE]
-    assert urls[0] == "/reference/getting-started/", "Getting started comes first"
+    ours = [url for _, url in REFERENCE[1:]]
     assert [u for u in urls if u in ours] == ours, f"reference pages out of order: {urls}"
     practices = [i for i, item in enumerate(nav) if item.get("title", "").startswith("Practice")]
     assert practices and nav.index(sections[0]) > max(practices), "Reference follows the practices"
+    # Getting started is read first: a top-level entry before the practices.
+    [start] = [i for i, item in enumerate(nav) if item.get("url") == REFERENCE[0][1]]
+    assert start < min(practices), "Getting started comes before Practice 1"
+    assert REFERENCE[0][1] not in urls, "Getting started is listed once"
 
 
 @pytest.mark.parametrize("name, url", REFERENCE)

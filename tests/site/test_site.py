@@ -60,6 +60,24 @@ def reading_order(nav: list[dict]) -> list[dict]:
     return order
 
 
+def reading_labels(nav: list[dict]) -> list[str]:
+    """What the previous/next links call each page of the reading order: the page's title,
+    after the name of its section ("Practice 2 · Modelling", "Reference · Glossary")."""
+    labels = []
+    for item in nav:
+        if "url" in item:
+            labels.append(item["title"])
+        section = item["title"].split(":")[0].strip()
+        labels.extend(f"{section} · {child['title']}" for child in item.get("children", []))
+    return labels
+
+
+def link_text(page_html: str, rel: str) -> str:
+    """The text of the page's rel="prev" or rel="next" link, tags dropped."""
+    match = re.search(rf'<a [^>]*rel="{rel}"[^>]*>(.*?)</a>', page_html, re.S)
+    return html.unescape(re.sub(r"\s+", " ", re.sub(r"<[^>]+>", "", match.group(1))).strip()) if match else ""
+
+
 def code_text(block_html: str) -> str:
     """The plain text of the first highlighted <pre> in `block_html`."""
     match = re.search(r"<pre class=\"highlight\"[^>]*><code>(.*?)</code></pre>", block_html, re.S)
@@ -72,6 +90,15 @@ def code_text(block_html: str) -> str:
 
 def test_site_builds_without_warnings(site):
     assert (site / "index.html").is_file()
+
+
+def test_getting_started_comes_before_the_first_practice(sources):
+    """In the sidebar and in the previous/next order, a reader meets the installation
+    before Practice 1."""
+    urls = [entry["url"] for entry in reading_order(sources["nav"])]
+    titles = [item["title"] for item in sources["nav"]]
+    assert urls[:3] == ["/", "/reference/getting-started/", "/practice-1/modelling/"], urls[:3]
+    assert titles.index("Getting started") < min(i for i, t in enumerate(titles) if t.startswith("Practice"))
 
 
 def test_navigation_pages_exist(site, sources):
@@ -93,9 +120,11 @@ def test_every_page_is_in_navigation(sources):
 
 def test_layout_of_every_page(site, sources):
     """Sidebar with every navigation link and the current page marked, a table of contents
-    listing the page's h2/h3 headings, previous/next links in navigation order."""
+    listing the page's h2/h3 headings, previous/next links in navigation order that name
+    the page's practice ("Next: Practice 2 · Modelling")."""
     order = reading_order(sources["nav"])
     urls = [entry["url"] for entry in order]
+    labels = reading_labels(sources["nav"])
     problems = []
     for i, url in enumerate(urls):
         page = built_page(site, url).read_text(encoding="utf-8")
@@ -127,6 +156,11 @@ def test_layout_of_every_page(site, sources):
             expected = [urls[j]] if 0 <= j < len(urls) else []
             if found != expected:
                 problems.append(f"{where} {rel} link {found}, expected {expected}")
+            elif found:
+                word = "Previous" if rel == "prev" else "Next"
+                text, wanted = link_text(page, rel), f"{word}: {labels[j]}"
+                if text != wanted:
+                    problems.append(f"{where} {rel} link reads {text!r}, expected {wanted!r}")
     assert not problems, "\n".join(problems)
 
 
