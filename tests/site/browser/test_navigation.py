@@ -1,0 +1,105 @@
+"""Finding one's way around: the phone menu, the links in the header and footer, the
+"On this page" box that follows the reader, and the page for an address that does not exist.
+
+The menu is _includes/sidebar.html, opened by the Menu button of _includes/header.html
+(assets/js/site.js) and laid out by assets/css/main.css.
+"""
+
+from urllib.parse import urlsplit
+
+import pytest
+import yaml
+
+from conftest import SETTLE_TIMEOUT_S, BrowserPage
+from repository import ROOT
+
+PHONE = {"width": 390, "height": 844}
+NAVIGATION = ROOT / "_data" / "navigation.yml"
+
+
+def last_navigation_url() -> str:
+    """The url of the last entry of _data/navigation.yml (a section's last child)."""
+    last = yaml.safe_load(NAVIGATION.read_text(encoding="utf-8"))[-1]
+    return last["children"][-1]["url"] if "children" in last else last["url"]
+
+
+@pytest.fixture(scope="module")
+def phone(browser, site):
+    """A tab the size of a phone (390 × 844 CSS pixels)."""
+    context = browser.new_context(viewport=PHONE)
+    context.set_default_timeout(SETTLE_TIMEOUT_S * 1000)
+    try:
+        yield BrowserPage(context.new_page(), site)
+    finally:
+        context.close()
+
+
+def box(locator) -> dict:
+    return locator.evaluate("""element => {
+        const r = element.getBoundingClientRect();
+        return {top: r.top, bottom: r.bottom, left: r.left, right: r.right,
+                x: r.left + r.width / 2, y: r.top + r.height / 2};
+    }""")
+
+
+def scroll_into_drawer(page, drawer, target) -> None:
+    """Turn the mouse wheel over the open menu, as a reader would, until `target` shows
+    whole inside it; the page behind must not move."""
+    behind = page.evaluate("window.scrollY")
+    for _ in range(40):
+        shown, seen = box(drawer), box(target)
+        if seen["top"] >= shown["top"] and seen["bottom"] <= shown["bottom"]:
+            break
+        page.mouse.move(shown["x"], shown["y"])
+        page.mouse.wheel(0, 150 if seen["bottom"] > shown["bottom"] else -150)
+        page.wait_for_timeout(50)
+    else:
+        pytest.fail(f"{target} cannot be scrolled into the open menu: menu {box(drawer)}, "
+                    f"entry {box(target)}", pytrace=False)
+    assert page.evaluate("window.scrollY") == behind, "scrolling the menu scrolled the page"
+
+
+def click_where_it_shows(page, target) -> None:
+    """Click the middle of `target`, after checking that it is what shows there."""
+    point = box(target)
+    covered_by = target.evaluate("""(element, [x, y]) => {
+        const there = document.elementFromPoint(x, y);
+        return element.contains(there) ? "" : (there ? there.outerHTML.slice(0, 200) : "nothing");
+    }""", [point["x"], point["y"]])
+    assert not covered_by, f"the entry is not what shows at its place: {covered_by}"
+    page.mouse.click(point["x"], point["y"])
+
+
+@pytest.mark.parametrize("start", ["/", "/practice-1/modelling/"])
+def test_the_phone_menu_reaches_the_last_page_of_the_navigation(phone, start):
+    """At 390 × 844 the menu fills the window below the header and scrolls: from the home
+    page (every section open) and from a page of Practice 1 (only that section open),
+    the last entry of the navigation can be scrolled to, its section opened and the entry
+    followed."""
+    page = phone.page
+    phone.visit(start)
+    page.click(".nav-toggle")
+    drawer = page.locator("#sidebar")
+    page.wait_for_function("() => { const r = document.getElementById('sidebar')"
+                           ".getBoundingClientRect(); return r.left >= 0 && r.width > 0; }")
+    header = box(page.locator(".site-header"))
+    shown = box(drawer)
+    assert shown["top"] == pytest.approx(header["bottom"], abs=1), "the menu starts under the header"
+    assert shown["bottom"] == pytest.approx(PHONE["height"], abs=1), \
+        f"the menu ends at {shown['bottom']:.0f} px, not at the bottom of the window"
+
+    url = last_navigation_url()
+    entry = drawer.locator("a.nav-link").last
+    assert urlsplit(entry.get_attribute("href")).path == url
+    section = entry.locator("xpath=ancestor::details[1]")
+    if section.count() and not section.evaluate("details => details.open"):
+        summary = section.locator("summary")
+        scroll_into_drawer(page, drawer, summary)
+        click_where_it_shows(page, summary)
+        assert section.evaluate("details => details.open"), "the section did not open"
+
+    scroll_into_drawer(page, drawer, entry)
+    with page.expect_navigation():
+        click_where_it_shows(page, entry)
+    assert urlsplit(page.url).path == url
+    assert page.locator('#sidebar a[aria-current="page"]').get_attribute("href") == entry.get_attribute("href")
