@@ -20,7 +20,7 @@ LOG_PROBLEM = re.compile(r"(?i)\b(warning|conflict|deprecation|error)\b")
 SITE_MACHINERY = ["_config.yml", "_layouts", "_includes", "_plugins", "_data"]
 
 # What Jekyll reads to build the site (see _config.yml): newer files mean a stale _site.
-SITE_SOURCES = ["_config.yml", "_pages", "_layouts", "_includes", "_plugins", "_data",
+SITE_SOURCES = ["_config.yml", "404.html", "_pages", "_layouts", "_includes", "_plugins", "_data",
                 "assets", "media", "examples", "notebooks"]
 # Files Jekyll leaves out of the site anyway (_plugins/verbatim_dirs.rb, _config.yml).
 NOT_PUBLISHED = {"__pycache__", "MUJOCO_LOG.TXT"}

@@ -19,11 +19,13 @@ import textwrap
 from pathlib import Path
 
 import pytest
+import yaml
 
 from jekyll import (LOG_PROBLEM, SITE_MACHINERY, assert_clean_build, build_log, need_tool, run_bundled,  # noqa: F401
                     between, built_page, bundle, jekyll_build, whole_site)
 from repository import ROOT
 
+EXPORTER = "https://github.com/ros/solidworks_urdf_exporter"
 WORKFLOWS = [ROOT / ".github" / "workflows" / "pages.yml", ROOT / ".github" / "workflows" / "test.yml"]
 
 @pytest.fixture(scope="module")
@@ -162,6 +164,56 @@ def test_layout_of_every_page(site, sources):
                 if text != wanted:
                     problems.append(f"{where} {rel} link reads {text!r}, expected {wanted!r}")
     assert not problems, "\n".join(problems)
+
+
+def test_footer_and_edit_links_on_every_page(site, sources):
+    """Every page, the 404 page too, links to the course repository and the exporter in
+    its footer, and every page but the 404 page to its own source file in the repository
+    ("Edit this page")."""
+    config = yaml.safe_load((ROOT / "_config.yml").read_text(encoding="utf-8"))
+    repository, branch = config["repository"], config["repository_branch"]
+    assert re.fullmatch(r"[\w.-]+/[\w.-]+", repository), f"repository: {repository!r} is not owner/name"
+    sources_by_url = {front["permalink"]: path for path, front in sources["pages"].items() if front}
+    sources_by_url["/404.html"] = "404.html"
+    problems = []
+    for url, source in sorted(sources_by_url.items()):
+        assert (ROOT / source).is_file()
+        page = built_page(site, url).read_text(encoding="utf-8")
+        footer = between(page, '<footer class="site-footer">', "</footer>")
+        for wanted in (f"https://github.com/{repository}", EXPORTER):
+            if f'href="{wanted}"' not in footer:
+                problems.append(f"{url}: no link to {wanted} in the footer")
+        edit = re.findall(r'<p class="page-edit"><a href="([^"]+)">Edit this page', page)
+        wanted = [] if url == "/404.html" else [f"https://github.com/{repository}/edit/{branch}/{source}"]
+        if edit != wanted:
+            problems.append(f"{url}: edit links {edit}, expected {wanted}")
+    assert not problems, "\n".join(problems)
+
+
+def test_the_pages_workflow_names_the_repository_it_builds():
+    """_config.yml holds a placeholder; the published site links to the real repository
+    and branch, which the Pages workflow passes to Jekyll in its extra config file."""
+    workflow = yaml.safe_load(WORKFLOWS[0].read_text(encoding="utf-8"))
+    [build] = [step for step in workflow["jobs"]["build"]["steps"]
+               if "jekyll build" in step.get("run", "")]
+    env = {value: name for name, value in build["env"].items()}
+    repository, branch = env["${{ github.repository }}"], env["${{ github.ref_name }}"]
+    script = build["run"]
+    assert "repository: " in script and "repository_branch: " in script, script
+    assert f'"${repository}"' in script and f'"${branch}"' in script, script
+    config_file = re.search(r'> "(\$RUNNER_TEMP/[\w.-]+\.yml)"', script).group(1)
+    assert f"_config.yml,{config_file}" in script, "the extra config file is not read"
+
+
+def test_the_404_page_is_a_page_of_the_site(site):
+    """GitHub Pages answers a missing address with 404.html: the site's layout, with links
+    that carry the baseurl, kept out of the sitemap and the search."""
+    page = (site / "404.html").read_text(encoding="utf-8")
+    assert '<aside id="sidebar"' in page and '<header class="site-header">' in page
+    assert "<title>Page not found" in page
+    assert 'href="/"' in between(page, '<div class="page-body">', "</main>")
+    assert "/404.html" not in (site / "sitemap.xml").read_text(encoding="utf-8")
+    assert "/404.html" not in (site / "assets" / "search-data.json").read_text(encoding="utf-8")
 
 
 def test_stylesheets_and_scripts_exist(site):

@@ -10,6 +10,7 @@ from urllib.parse import urlsplit
 import pytest
 import yaml
 
+import axe_audit
 from conftest import SETTLE_TIMEOUT_S, BrowserPage
 from repository import ROOT
 
@@ -103,3 +104,26 @@ def test_the_phone_menu_reaches_the_last_page_of_the_navigation(phone, start):
         click_where_it_shows(page, entry)
     assert urlsplit(page.url).path == url
     assert page.locator('#sidebar a[aria-current="page"]').get_attribute("href") == entry.get_attribute("href")
+
+
+@pytest.mark.parametrize("size", [PHONE, {"width": 1366, "height": 900}], ids=["phone", "wide"])
+def test_the_404_page_looks_like_the_site_and_leads_home(browser_page, site, size):
+    """/404.html (what GitHub Pages shows for a missing address) loads cleanly with the
+    site's stylesheet and header, passes axe, and its first link goes to the home page."""
+    page = browser_page.page
+    page.set_viewport_size(size)
+    try:
+        visit = browser_page.visit("/404.html", then=lambda p: p.add_script_tag(
+            url=site.node_module_url(axe_audit.AXE)))
+        assert not visit.problems(), visit.problems()
+        axe_audit.start(page, "/404.html")
+        assert not axe_audit.serious(axe_audit.collect(page))
+        assert page.locator("h1").inner_text() == "Page not found"
+        # main.css applies: the header sticks and the text is in the site's font.
+        assert page.locator(".site-header").evaluate("e => getComputedStyle(e).position") == "sticky"
+        assert "system-ui" in page.locator("main").evaluate("e => getComputedStyle(e).fontFamily")
+        with page.expect_navigation():
+            page.locator(".page-body a").first.click()
+        assert urlsplit(page.url).path == "/"
+    finally:
+        page.set_viewport_size({"width": 1280, "height": 800})
