@@ -24,8 +24,9 @@ module Sw2simSite
     # The heading of a section and everything up to the next h2 or h3.
     HEADING = %r{<h([23])\b[^>]*?\bid="([^"]+)"[^>]*>(.*?)</h\1>}m.freeze
     CODE_BLOCK = %r{<pre\b[^>]*>(.*?)</pre>}m.freeze
-    # Code block headers (_plugins/code_blocks.rb) say "python" or name a file: not prose.
-    CODE_HEADER = %r{<div class="code-(?:header|skip)">.*?</div>}m.freeze
+    # Code block headers (_plugins/code_blocks.rb) say "python" or name a file, and a block's
+    # output (_plugins/code_outputs.rb) is what the code printed: neither is prose.
+    CODE_HEADER = %r{<div class="code-(?:header|skip)">.*?</div>|<details class="code-output".*?</details>}m.freeze
     DISPLAY_MATH = /\\\[.*?\\\]/m.freeze
     INLINE_MATH = /\\\((.*?)\\\)/m.freeze
     TAG = /<[^>]+>/.freeze

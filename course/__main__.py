@@ -3,9 +3,11 @@
 1. the example packages, from the practices' designs   (python -m course.practices)
 2. the figures under media/, from the packages          (python -m course.media)
 3. the Troubleshooting page's data, from the rules      (python -m course.troubleshooting)
-4. the lesson notebooks, from the pages and packages    (python -m course.notebooks)
+4. what the pages' blocks print, shown under them       (python -m course.snippets.outputs)
+5. the lesson notebooks, from the pages and packages    (python -m course.notebooks)
 
-Each step redoes only what is out of date. `--check` changes nothing: it lists what is
+Each step redoes only what is out of date (step 4 runs every page, a matter of seconds,
+and writes only the files that change). `--check` changes nothing: it lists what is
 stale and exits 1 if anything is. `make media` runs this.
 """
 
@@ -17,11 +19,13 @@ import time
 
 from . import media, notebooks, troubleshooting
 from .practices import __main__ as packages
+from .snippets import outputs as page_outputs
 
 STEPS = [
     ("example packages", packages.main),
     ("figures", media.main),
     ("troubleshooting data", troubleshooting.main),
+    ("page outputs", page_outputs.main),
     ("notebooks", notebooks.main),
 ]
 

@@ -7,6 +7,7 @@ import sys
 from pathlib import Path
 
 from . import find_pages, format_failure, format_skipped, format_summary, parse_page, run_page
+from . import outputs
 from .execute import shutdown
 
 
@@ -25,6 +26,9 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--timeout", type=float, help="seconds per block, overriding the pages' own")
     parser.add_argument("--plain", action="store_true",
                         help="start every page's process as a plain `python` subprocess, not from the fork server")
+    parser.add_argument("--write-outputs", action="store_true",
+                        help="store what each page's blocks print in _data/outputs/, for the site "
+                             "(pages that fail keep theirs; see course/snippets/outputs.py)")
     args = parser.parse_args(argv)
     root = (args.root or find_root(Path.cwd())).resolve()
     pages = args.pages or find_pages(root)
@@ -38,6 +42,8 @@ def main(argv: list[str] | None = None) -> int:
             page = parse_page(path, root)
             result = run_page(page, root, args.timeout, fork=False if args.plain else None)
             print(format_summary(result), flush=True)
+            if args.write_outputs and result.ok and (done := outputs.write(page, result, root)):
+                print(f"       {done}", flush=True)
             if not result.ok:
                 failed += 1
                 print(format_failure(result), flush=True)
@@ -45,6 +51,9 @@ def main(argv: list[str] | None = None) -> int:
             skipped += page.skipped
     finally:
         shutdown()
+    for file in outputs.orphans(root) if args.write_outputs and not args.pages else []:
+        file.unlink()
+        print(f"removed {file.relative_to(root)}: its page is gone")
     print(f"\n{len(pages)} pages, {failed} failed; snippet blocks run: {ran}; skipped snippet blocks: {len(skipped)}")
     for line in format_skipped(skipped):
         print(f"  {line}")

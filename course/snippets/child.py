@@ -9,7 +9,8 @@ Usage: python child.py JOB.json REPORT_FD   (stdlib only: it must not import sw2
 JOB.json holds {"page": str, "timeout": float, "blocks": [{"line", "code", "filename"}]}.
 Events go to REPORT_FD as JSON lines, never to stdout/stderr, which belong to the blocks:
   {"event": "start", "index": i, "offset": n} a block begins; its output starts at byte n
-  {"event": "ok", "index": i, "seconds": t} it finished
+  {"event": "ok", "index": i, "seconds": t, "end": n}
+                                            it finished; its output ends at byte n
   {"event": "error", "index": i, ...}       it raised; nothing more runs
   {"event": "done"}                         the page is over
 """
@@ -55,7 +56,7 @@ def main(argv: list[str]) -> None:
         if error is not None:
             _send(report, event="error", index=index, **error)
             break
-        _send(report, event="ok", index=index, seconds=round(time.monotonic() - began, 3))
+        _send(report, event="ok", index=index, seconds=round(time.monotonic() - began, 3), end=_output_size())
     _send(report, event="done")
     report.close()
     # Skip interpreter teardown: leftover threads or GL contexts must not hang or crash it.

@@ -87,6 +87,8 @@ class PageResult:
     failure: Failure | None = None
     errors: list[ParseError] = field(default_factory=list)  # page mistakes; nothing ran
     seconds: float = 0.0
+    # What each block of `ran` printed, stdout and stderr as they came (course/snippets/outputs.py)
+    outputs: list[str] = field(default_factory=list)
 
     @property
     def ok(self) -> bool:
@@ -287,6 +289,7 @@ def _watch(
                 deadline = time.monotonic() + limit + DUMP_GRACE
             elif kind == "ok":
                 result.ran.append(blocks[current])
+                result.outputs.append(_tail(output, offset, limit=None, end=event.get("end")))
                 running = False
             elif kind == "error":
                 block = blocks[current]
@@ -320,13 +323,13 @@ def _signal_name(number: int) -> str:
         return f"signal {number}"
 
 
-def _tail(output: Path, offset: int) -> str:
-    """The captured output from byte `offset`, trimmed to its last OUTPUT_LIMIT characters."""
+def _tail(output: Path, offset: int, limit: int | None = OUTPUT_LIMIT, end: int | None = None) -> str:
+    """The captured output from byte `offset` (to byte `end`), trimmed to its last `limit` characters."""
     with open(output, "rb") as f:
         f.seek(offset)
-        text = f.read().decode("utf-8", errors="replace")
-    if len(text) > OUTPUT_LIMIT:
-        text = "[... earlier output cut ...]\n" + text[-OUTPUT_LIMIT:]
+        text = f.read(-1 if end is None else max(0, end - offset)).decode("utf-8", errors="replace")
+    if limit is not None and len(text) > limit:
+        text = "[... earlier output cut ...]\n" + text[-limit:]
     return text
 
 

@@ -1,4 +1,5 @@
-"""Every ```python block of every lesson page runs, in page order, as a reader would run it."""
+"""Every ```python block of every lesson page runs, in page order, as a reader would run it,
+and prints what the page shows under it (_data/outputs/, course/snippets/outputs.py)."""
 
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
@@ -7,6 +8,7 @@ import pytest
 from parallel_jobs import selected, workers
 
 from course.snippets import find_pages, format_failure, format_skipped, parse_page, run_page
+from course.snippets import outputs
 
 from repository import ROOT
 PAGES = find_pages(ROOT)
@@ -35,3 +37,12 @@ def test_page(path: Path, record_property, runs) -> None:
     record_property("snippets_ran", len(result.ran))
     if not result.ok:
         pytest.fail(format_failure(result), pytrace=False)
+    # The same run checks the outputs the site shows under the blocks.
+    if stale := outputs.differences(page, result, ROOT):
+        pytest.fail(stale, pytrace=False)
+
+
+def test_every_outputs_file_has_its_page():
+    gone = [f.relative_to(ROOT).as_posix() for f in outputs.orphans(ROOT)]
+    assert not gone, (f"outputs of pages that no longer exist: {', '.join(gone)}; "
+                      f"`{outputs.COMMAND}` (all pages) removes them")
