@@ -111,9 +111,9 @@ def convert(source: str | os.PathLike | Package, folder: str | os.PathLike, *,
     robot_file = folder / f"{result.name}.xml"
     header = (f"<!-- {spec.modelname}: converted by `sw2sim convert` from "
               f"{package.urdf.relative_to(package.root).as_posix()}; see README.md -->\n")
-    robot_file.write_text(header + spec.to_xml(), encoding="utf-8")
-    (folder / SCENE).write_text(_scene_xml(result, model), encoding="utf-8")
-    (folder / README).write_text(readme(result, package), encoding="utf-8")
+    robot_file.write_text(header + spec.to_xml(), encoding="utf-8", newline="\n")
+    (folder / SCENE).write_text(_scene_xml(result, model), encoding="utf-8", newline="\n")
+    (folder / README).write_text(readme(result, package), encoding="utf-8", newline="\n")
     result.files += [robot_file, folder / SCENE, folder / README]
 
     try:  # the folder must stand on its own: load it as anyone would

@@ -62,7 +62,7 @@ def find_package_folder(name: str) -> Path | None:
         for folder in [base, *sorted(p for p in base.glob("*") if p.is_dir())]:
             manifest = folder / "package.xml"
             if manifest.is_file() and re.search(rf"<name>\s*{re.escape(name)}\s*</name>",
-                                                manifest.read_text(errors="replace")):
+                                                manifest.read_text(encoding="utf-8", errors="replace")):
                 return folder
     return None
 
@@ -76,7 +76,7 @@ def package_of(model_xml: str):
     folder = find_package_folder(names[0]) if names else None
     if folder is None:
         scratch = Path(tempfile.mkdtemp(prefix="sw2sim-spawn-"))
-        (scratch / "robot.urdf").write_text(model_xml)
+        (scratch / "robot.urdf").write_text(model_xml, encoding="utf-8")
         return find_package(scratch / "robot.urdf")
     package = find_package(folder)
     robot = xmlsafe.parse_bytes(model_xml.encode())

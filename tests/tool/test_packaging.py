@@ -110,6 +110,40 @@ def test_the_course_and_the_tests_declare_what_they_import_in_their_extras():
     assert not (course & tool) and not (test & (tool | course)), "a package listed twice"
 
 
+# A page's ```python block, with the attribute line after its closing fence if it has one.
+PAGE_BLOCK = re.compile(r"^```python[ \t]*\n(?P<code>.*?)^```[ \t]*\n(?P<attributes>\{:[^\n]*\})?", re.M | re.S)
+
+
+def page_imports() -> dict[str, set[str]]:
+    """Top-level names the pages' runnable Python blocks import (not those marked
+    data-skip or data-ros, nor include_code blocks: their files are under examples/), each
+    with the pages that import it; without the standard library, this repository and ROS."""
+    found: dict[str, set[str]] = {}
+    for page in sorted((ROOT / "_pages").rglob("*.md")):
+        for block in PAGE_BLOCK.finditer(page.read_text(encoding="utf-8")):
+            attributes = block["attributes"] or ""
+            if "data-skip" in attributes or "data-ros" in attributes or block["code"].lstrip().startswith("{%"):
+                continue
+            for node in ast.walk(ast.parse(block["code"])):
+                names = ([alias.name for alias in node.names] if isinstance(node, ast.Import) else
+                         [node.module] if isinstance(node, ast.ImportFrom) and node.level == 0 and node.module
+                         else [])
+                for name in names:
+                    found.setdefault(name.split(".")[0], set()).add(page.relative_to(ROOT).as_posix())
+    ignored = set(sys.stdlib_module_names) | local_modules() | ROS_MODULES | {"__future__"}
+    return {name: pages for name, pages in found.items() if name not in ignored}
+
+
+def test_the_course_extra_holds_what_the_lessons_import():
+    """`pip install ".[course]"` is all a reader needs for the pages' Python, on any system."""
+    modules = page_imports()
+    assert {"mujoco", "numpy", "yourdfpy"} <= set(modules), f"the blocks were not found: {sorted(modules)}"
+    extras = PYPROJECT["project"]["optional-dependencies"]
+    covered = declared(PYPROJECT["project"]["dependencies"]) | declared(extras["course"])
+    missing = {module: sorted(pages) for module, pages in modules.items() if distribution_of(module) not in covered}
+    assert not missing, f"the pages import these; add them to the `course` extra: {missing}"
+
+
 def test_every_declared_package_is_pinned_in_requirements_txt():
     pinned = {normalise(line.split("==")[0]) for line in
               (ROOT / "requirements.txt").read_text(encoding="utf-8").splitlines()
