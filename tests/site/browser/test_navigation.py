@@ -9,6 +9,7 @@ from urllib.parse import urlsplit
 
 import pytest
 import yaml
+from playwright.sync_api import TimeoutError as PlaywrightTimeout
 
 import axe_audit
 from conftest import SETTLE_TIMEOUT_S, BrowserPage
@@ -125,5 +126,61 @@ def test_the_404_page_looks_like_the_site_and_leads_home(browser_page, site, siz
         with page.expect_navigation():
             page.locator(".page-body a").first.click()
         assert urlsplit(page.url).path == "/"
+    finally:
+        page.set_viewport_size({"width": 1280, "height": 800})
+
+
+TOC_PAGE = "/practice-1/modelling/"
+CURRENT_ENTRY = """() => Array.from(document.querySelectorAll('.toc-list a[aria-current="location"]'),
+                                 a => a.hash.slice(1))"""
+
+
+def wait_until_marked(page, wanted: str, equal: bool = True) -> None:
+    """Wait until the marked entries, joined, are (or are no longer) `wanted`."""
+    test = "===" if equal else "!=="
+    try:
+        page.wait_for_function(f"() => ({CURRENT_ENTRY})().join() {test} {wanted!r}",
+                               timeout=5000, polling=100)
+    except PlaywrightTimeout:
+        pytest.fail(f"waiting for the marked entry {test} {wanted!r}: marked "
+                    f"{page.evaluate(CURRENT_ENTRY)} at scrollY {page.evaluate('window.scrollY')}",
+                    pytrace=False)
+
+
+def test_on_this_page_marks_the_section_in_view(browser_page):
+    """At 1366 × 900, scrolling with the wheel to a heading marks its entry in "On this
+    page" (assets/js/toc.js), one entry at a time, going down and back up; the End key
+    marks the last entry, Home leaves at most the first one marked."""
+    page = browser_page.page
+    page.set_viewport_size({"width": 1366, "height": 900})
+    try:
+        visit = browser_page.visit(TOC_PAGE)
+        assert not visit.problems(), visit.problems()
+        ids = page.locator(".toc-list a").evaluate_all("links => links.map(a => a.hash.slice(1))")
+        assert len(ids) >= 5, f"{TOC_PAGE} lists too few sections to follow: {ids}"
+        header = box(page.locator(".site-header"))
+        # Headings that can be scrolled up to the header before the page ends (near the
+        # end, the last section on screen is marked instead).
+        reachable = page.evaluate("""([ids, below]) => ids.filter(id =>
+            document.getElementById(id).getBoundingClientRect().top + window.scrollY - below
+            + window.innerHeight < document.documentElement.scrollHeight - 40)""",
+                                  [ids, header["bottom"]])
+        assert len(reachable) >= 4, reachable
+        for target in (reachable[2], reachable[-1], reachable[1]):
+            heading = box(page.locator(f"#{target}"))
+            page.mouse.move(700, 500)
+            page.mouse.wheel(0, heading["top"] - header["bottom"] - 20)
+            wait_until_marked(page, target)
+            assert page.evaluate(CURRENT_ENTRY) == [target]
+            # The marked entry is the one shown in the link colour.
+            colours = page.locator(".toc-list a").evaluate_all(
+                "links => links.map(a => getComputedStyle(a).color)")
+            assert len(set(colours)) == 2 and colours.count(colours[ids.index(target)]) == 1
+        page.keyboard.press("End")
+        wait_until_marked(page, ids[-1])
+        page.keyboard.press("Home")
+        page.wait_for_function("() => window.scrollY === 0", timeout=5000, polling=100)
+        wait_until_marked(page, ids[-1], equal=False)
+        assert page.evaluate(CURRENT_ENTRY) in ([], [ids[0]])
     finally:
         page.set_viewport_size({"width": 1280, "height": 800})
