@@ -38,7 +38,7 @@ help:
 	@echo "make test    set up, build the site, then run every test"
 	@echo "make build   regenerate stale figures and build the site into _site/"
 	@echo "make site    build the site into _site/ from the figures as they are"
-	@echo "make media   regenerate what is stale: example packages, figures, Troubleshooting data, notebooks"
+	@echo "make media   regenerate what is stale: example packages, figures, Troubleshooting data, page outputs, notebooks"
 	@echo "make clean   remove build outputs (keeps .venv and node_modules)"
 
 setup: $(STAMPS)/apt $(STAMPS)/browser $(STAMPS)/venv $(STAMPS)/npm $(STAMPS)/ros
@@ -115,7 +115,8 @@ assets/vendor/.done: $(STAMPS)/npm tools/copy-vendor.sh
 	@touch $@
 
 # Everything generated, in order: the example packages, the figures, the Troubleshooting
-# page's data, the lesson notebooks (python -m course; each step redoes only what is stale).
+# page's data, what the pages' blocks print, the lesson notebooks (python -m course; each
+# step redoes only what is stale).
 media: setup
 	$(PY) -m course
 
