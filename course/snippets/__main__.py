@@ -9,6 +9,7 @@ from pathlib import Path
 from . import find_pages, format_failure, format_skipped, format_summary, parse_page, run_page
 from . import outputs
 from .execute import shutdown
+from .parse import display_path
 
 
 def find_root(start: Path) -> Path:
@@ -29,9 +30,18 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--write-outputs", action="store_true",
                         help="store what each page's blocks print in _data/outputs/, for the site "
                              "(pages that fail keep theirs; see course/snippets/outputs.py)")
+    parser.add_argument("--exclude", action="append", type=Path, default=[], metavar="PAGE",
+                        help="leave this page out (repeatable): one that needs what this machine lacks")
     args = parser.parse_args(argv)
     root = (args.root or find_root(Path.cwd())).resolve()
     pages = args.pages or find_pages(root)
+    excluded = {page.resolve() for page in args.exclude}
+    unknown = sorted(str(page) for page in args.exclude if not page.is_file())
+    if unknown:
+        print(f"--exclude: no such page: {', '.join(unknown)}", file=sys.stderr)
+        return 1
+    left_out = [page for page in pages if page.resolve() in excluded]
+    pages = [page for page in pages if page.resolve() not in excluded]
     if not pages:
         print(f"no pages found under {root / '_pages'}", file=sys.stderr)
         return 1
@@ -57,6 +67,10 @@ def main(argv: list[str] | None = None) -> int:
     print(f"\n{len(pages)} pages, {failed} failed; snippet blocks run: {ran}; skipped snippet blocks: {len(skipped)}")
     for line in format_skipped(skipped):
         print(f"  {line}")
+    if left_out:
+        print(f"pages left out (--exclude): {len(left_out)}")
+        for page in left_out:
+            print(f"  {display_path(page, root)}")
     return 1 if failed else 0
 
 

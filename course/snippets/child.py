@@ -1,6 +1,7 @@
 """Child process: run one page's blocks in one namespace, as a reader pasting them would.
 
-Usage: python child.py JOB.json REPORT_FD   (stdlib only: it must not import sw2sim)
+Usage: python child.py JOB.json REPORT_FD   (stdlib only: it must not import sw2sim;
+                                           on Windows REPORT_FD is an inherited handle)
        python child.py --serve CONTROL_FD PRELOAD_JSON
                                            the fork server (forkserver.py): imports the
                                            libraries, then forks one process per page that
@@ -31,10 +32,11 @@ from typing import Any, TextIO
 def main(argv: list[str]) -> None:
     with open(argv[1], encoding="utf-8") as f:
         job = json.load(f)
-    fd = int(argv[2])
+    fd = _report_fd(int(argv[2]))
     # Processes the blocks start must not hold the pipe open after this one dies.
     os.set_inheritable(fd, False)
-    report = os.fdopen(fd, "w", encoding="utf-8", buffering=1)
+    # newline="\n": one event a line as the runner splits them, "\r\n" on no system.
+    report = os.fdopen(fd, "w", encoding="utf-8", newline="\n", buffering=1)
     page: str = job["page"]
     filenames = {page} | {b["filename"] for b in job["blocks"]}
     sys.argv = [""]  # what an interactive interpreter has
@@ -61,6 +63,16 @@ def main(argv: list[str]) -> None:
     report.close()
     # Skip interpreter teardown: leftover threads or GL contexts must not hang or crash it.
     os._exit(0)
+
+
+def _report_fd(number: int) -> int:
+    """The report pipe's file descriptor: `number` itself, or on Windows, where a child
+    inherits handles and not descriptors, a descriptor opened on the handle `number`."""
+    if os.name != "nt":
+        return number
+    import msvcrt
+
+    return msvcrt.open_osfhandle(number, os.O_WRONLY)
 
 
 def _run(block: dict[str, Any], namespace: dict[str, Any], page: str, filenames: set[str]) -> dict[str, Any] | None:

@@ -8,6 +8,11 @@ Each page gets a process of its own, which starts as a fresh interpreter would. 
 - a plain subprocess, `python -c ... child.py` (elsewhere, when the server cannot start,
   or with `run_page(..., fork=False)` or COURSE_SNIPPETS_FORK=0 in the environment).
 
+The plain way works on Windows too: there the child gets the report pipe as an inherited
+handle instead of a file descriptor, the pipe is read by a thread (select() takes only
+sockets there), and a page's processes are a process group (CREATE_NEW_PROCESS_GROUP)
+that a timeout ends with `taskkill /T`, where POSIX has a session and killpg().
+
 The server starts with the first page a process runs (that page runs in a plain process
 meanwhile) and stops when the process exits, or with `shutdown()`.
 """
@@ -17,6 +22,7 @@ from __future__ import annotations
 import atexit
 import json
 import os
+import queue
 import select
 import signal
 import subprocess
@@ -57,6 +63,9 @@ DUMP_GRACE = 1.0
 STARTUP_LIMIT = 60.0
 # Longest stretch of a failing block's output kept in a report.
 OUTPUT_LIMIT = 20_000
+WINDOWS = os.name == "nt"
+# Whether select() can wait on the report pipe (POSIX); elsewhere a thread reads it.
+SELECTABLE_PIPES = not WINDOWS
 
 
 @dataclass
@@ -101,7 +110,8 @@ def child_command(job: Path, report_fd: int) -> list[str]:
     child.py runs as a file, not as `-m course.snippets.child`: importing the sw2sim package
     would load its dependencies (and settle MUJOCO_GL) before the page's first line, which a
     reader's fresh interpreter does not do. `-c` also gives sys.path[0] == "" (the working
-    directory), as in an interactive interpreter.
+    directory), as in an interactive interpreter. On Windows `report_fd` is the pipe's
+    inheritable handle, which child.py turns back into a file descriptor.
     """
     return [sys.executable, "-c", BOOT, str(CHILD), str(job), str(report_fd)]
 
@@ -118,6 +128,9 @@ def child_env() -> dict[str, str]:
     env["MPLBACKEND"] = "Agg"
     env["PYTHONUNBUFFERED"] = "1"  # keeps stdout and stderr in order in the capture
     env["PYTHONFAULTHANDLER"] = "1"  # a crash prints the page line it happened at
+    if WINDOWS:
+        # Output to a file is in the ANSI code page there; a console (and the capture) is UTF-8.
+        env["PYTHONIOENCODING"] = "utf-8"
     return env
 
 
@@ -136,7 +149,8 @@ def run_page(page: Page, root: Path, timeout: float | None = None, *, fork: bool
         return result
     limit = timeout if timeout is not None else page.timeout
     began = time.monotonic()
-    with tempfile.TemporaryDirectory(prefix="snippets-") as tmp:
+    # Windows cannot delete a file a leftover process still has open: leave it to the system.
+    with tempfile.TemporaryDirectory(prefix="snippets-", ignore_cleanup_errors=WINDOWS) as tmp:
         job = Path(tmp, "job.json")
         job.write_text(
             json.dumps(
@@ -156,11 +170,14 @@ def run_page(page: Page, root: Path, timeout: float | None = None, *, fork: bool
                 proc = _start(job, root, write_fd, sink, fork)
             finally:
                 os.close(write_fd)
+            reader = _PipeReader(read_fd)
             try:
-                _watch(proc, read_fd, blocks, limit, output, result)
+                _watch(proc, reader, blocks, limit, output, result)
             finally:
-                os.close(read_fd)
+                # The page's processes first: on Windows the reading thread then sees the
+                # end of the pipe, and the pipe is not closed under it.
                 _kill_group(proc)
+                reader.close()
     result.seconds = time.monotonic() - began
     return result
 
@@ -177,6 +194,23 @@ def _start(job: Path, root: Path, write_fd: int, sink: Any, fork: bool | None) -
             return server.start(job, root, env, write_fd, sink.fileno())
         except ForkServerError as exc:
             _give_up(server, str(exc))
+    if WINDOWS:
+        import msvcrt
+
+        # No pass_fds there: the child inherits the pipe's handle, and only that one besides
+        # its standard streams (handle_list), and gets its number on the command line.
+        handle = msvcrt.get_osfhandle(write_fd)
+        os.set_handle_inheritable(handle, True)
+        return subprocess.Popen(
+            child_command(job, handle),
+            cwd=root,
+            env=env,
+            stdin=subprocess.DEVNULL,
+            stdout=sink,
+            stderr=subprocess.STDOUT,
+            startupinfo=subprocess.STARTUPINFO(lpAttributeList={"handle_list": [handle]}),
+            creationflags=subprocess.CREATE_NEW_PROCESS_GROUP,  # ended as a tree on a timeout
+        )
     return subprocess.Popen(
         child_command(job, write_fd),
         cwd=root,
@@ -251,9 +285,55 @@ def shutdown() -> None:
         server.close()
 
 
+class _PipeReader:
+    """The read end of the report pipe, read with a time limit: select() where pipes can be
+    selected (POSIX), else a thread that hands the chunks over through a queue (Windows)."""
+
+    CHUNK = 65536
+
+    def __init__(self, fd: int, threaded: bool | None = None):
+        self.fd = fd
+        self._chunks: queue.Queue[bytes] | None = None
+        self._thread: threading.Thread | None = None
+        if not SELECTABLE_PIPES if threaded is None else threaded:
+            self._chunks = queue.Queue()
+            self._thread = threading.Thread(target=self._pump, name="snippets-report", daemon=True)
+            self._thread.start()
+
+    def _pump(self) -> None:
+        assert self._chunks is not None
+        while True:
+            try:
+                chunk = os.read(self.fd, self.CHUNK)
+            except OSError:
+                chunk = b""
+            self._chunks.put(chunk)
+            if not chunk:
+                return
+
+    def read(self, timeout: float) -> bytes | None:
+        """The next bytes (b"" at the end of the pipe), or None if none came within `timeout` s."""
+        if self._chunks is None:
+            ready, _, _ = select.select([self.fd], [], [], timeout)
+            return os.read(self.fd, self.CHUNK) if ready else None
+        try:
+            return self._chunks.get(timeout=timeout)
+        except queue.Empty:
+            return None
+
+    def close(self) -> None:
+        if self._thread is not None:
+            # Every writer has ended by now, so the thread is at the end of the pipe; one
+            # held by a leftover process is not waited for longer than this.
+            self._thread.join(5.0)
+            if self._thread.is_alive():
+                return  # closing the pipe under a blocked read could hang: the thread keeps it
+        os.close(self.fd)
+
+
 def _watch(
     proc: Process,
-    read_fd: int,
+    reader: _PipeReader,
     blocks: list[Block],
     limit: float,
     output: Path,
@@ -265,8 +345,8 @@ def _watch(
     deadline = time.monotonic() + max(limit, STARTUP_LIMIT) + DUMP_GRACE
     buffer = b""
     while True:
-        ready, _, _ = select.select([read_fd], [], [], max(0.0, deadline - time.monotonic()))
-        if not ready:
+        chunk = reader.read(max(0.0, deadline - time.monotonic()))
+        if chunk is None:
             _kill_group(proc)
             message = (
                 f"block timed out after {limit:g} s"
@@ -275,7 +355,6 @@ def _watch(
             )
             result.failure = Failure(blocks[current], blocks[current].line, message, output=_tail(output, offset))
             return
-        chunk = os.read(read_fd, 65536)
         if not chunk:
             break
         buffer += chunk
@@ -335,8 +414,28 @@ def _tail(output: Path, offset: int, limit: int | None = OUTPUT_LIMIT, end: int 
 
 def _kill_group(proc: Process) -> None:
     """Kill the child and anything it started, then reap it."""
+    if WINDOWS:
+        _end_tree(proc)
+        return
     try:
         os.killpg(proc.pid, signal.SIGKILL)
     except (ProcessLookupError, PermissionError):
         pass
+    proc.wait()
+
+
+def _end_tree(proc: Process) -> None:
+    """Windows: end the child and the processes below it (`taskkill /T`), else the child
+    alone, then reap it. There is no group kill there for processes whose parent has gone."""
+    if proc.poll() is None:
+        try:
+            subprocess.run(["taskkill", "/F", "/T", "/PID", str(proc.pid)], stdin=subprocess.DEVNULL,
+                           stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, timeout=30, check=False)
+        except (OSError, subprocess.SubprocessError):
+            pass
+        if proc.poll() is None:
+            try:
+                proc.terminate()
+            except OSError:
+                pass
     proc.wait()
