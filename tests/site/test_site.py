@@ -26,7 +26,7 @@ from jekyll import (LOG_PROBLEM, SITE_MACHINERY, assert_clean_build, build_log, 
 from repository import ROOT
 
 EXPORTER = "https://github.com/ros/solidworks_urdf_exporter"
-WORKFLOWS = [ROOT / ".github" / "workflows" / "pages.yml", ROOT / ".github" / "workflows" / "test.yml"]
+WORKFLOWS = [ROOT / ".github" / "workflows" / name for name in ("pages.yml", "test.yml", "other-systems.yml")]
 
 @pytest.fixture(scope="module")
 def site(whole_site) -> Path:
