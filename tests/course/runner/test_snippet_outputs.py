@@ -3,12 +3,17 @@
 from __future__ import annotations
 
 import json
+import shutil
+import subprocess
+import sys
 from pathlib import Path
 
 from course.snippets import format_failure
 from course.snippets.outputs import data_file, differences, entries, normalise, record, write
 
 from repository import ROOT
+
+SAMPLES = Path(__file__).resolve().parent / "samples"
 
 PRINTED = ["first\nsecond\n", "to stdout\nto stderr\n", "", "from a subprocess\nafter it\n"]
 
@@ -83,3 +88,26 @@ def test_a_page_that_prints_nothing_has_no_file(run_sample, load_sample):
     result = run_sample("include.md")
     assert result.ok and result.outputs == ["", "", ""]
     assert record(load_sample("include.md"), result, ROOT) is None
+
+
+def test_the_command_writes_the_outputs_and_removes_those_of_pages_gone(tmp_path):
+    """`python -m course.snippets --write-outputs` on a scratch repository of one page."""
+    (tmp_path / "_pages").mkdir()
+    shutil.copy(SAMPLES / "prints.md", tmp_path / "_pages" / "prints.md")
+    gone = tmp_path / "_data" / "outputs" / "gone.json"
+    gone.parent.mkdir(parents=True)
+    gone.write_text("{}", encoding="utf-8")
+
+    def write_outputs() -> str:
+        done = subprocess.run([sys.executable, "-m", "course.snippets", "--write-outputs", "--root",
+                               str(tmp_path)], cwd=ROOT, capture_output=True, text=True, timeout=120)
+        assert done.returncode == 0, done.stdout + done.stderr
+        return done.stdout
+
+    printed = write_outputs()
+    assert "wrote _data/outputs/prints.json" in printed
+    assert "removed _data/outputs/gone.json: its page is gone" in printed
+    stored = json.loads((tmp_path / "_data" / "outputs" / "prints.json").read_text(encoding="utf-8"))
+    assert stored["page"] == "_pages/prints.md"
+    assert [b["output"] for b in stored["blocks"]] == [*PRINTED[:3], None, PRINTED[3]]
+    assert "wrote" not in write_outputs()  # nothing changed
