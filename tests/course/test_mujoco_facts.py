@@ -51,8 +51,8 @@ def test_mujoco_cannot_open_an_exported_urdf_but_can_open_the_converted_folder(t
     assert model.njnt == 4
     text = flat("practice-1/04-testing-and-modifying.md")
     assert "drag the URDF onto it" not in text and '"Error opening file"' in text
-    assert "sw2sim convert examples/example_1 -o /tmp/example_1_mujoco" in text
-    assert "--mjcf=/tmp/example_1_mujoco/scene.xml" in text
+    assert "sw2sim convert examples/example_1 -o example_1_mujoco" in text
+    assert "--mjcf=example_1_mujoco/scene.xml" in text
 
 
 def test_sw2sim_view_gives_each_wheel_a_speed_slider():
