@@ -2,24 +2,24 @@
 # Copies the front-end files the pages load from node_modules into assets/vendor/, where
 # Jekyll publishes them with the site. No page loads anything from a CDN.
 #
-# Copied: KaTeX (stylesheet, fonts, script, auto-render extension) and its licence.
+# Copied: KaTeX's stylesheet and fonts (the formulas are typeset at build time by
+# _plugins/math.rb and tools/render-math.mjs) and its licence.
 # assets/vendor/ is rebuilt from scratch each time and is not committed.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 katex=node_modules/katex/dist
-if [ ! -f "$katex/katex.min.js" ]; then
-    echo "copy-vendor: $katex/katex.min.js not found: node_modules is missing or incomplete." >&2
+if [ ! -f "$katex/katex.min.css" ]; then
+    echo "copy-vendor: $katex/katex.min.css not found: node_modules is missing or incomplete." >&2
     echo "copy-vendor: run 'make setup' (it runs npm ci) first." >&2
     exit 1
 fi
 
 out=assets/vendor
 rm -rf "$out"
-mkdir -p "$out/katex/contrib" "$out/katex/fonts"
+mkdir -p "$out/katex/fonts"
 
-cp "$katex/katex.min.css" "$katex/katex.min.js" "$out/katex/"
-cp "$katex/contrib/auto-render.min.js" "$out/katex/contrib/"
+cp "$katex/katex.min.css" "$out/katex/"
 # katex.min.css names each font in woff2, woff and ttf; browsers fetch one of them.
 cp "$katex"/fonts/KaTeX_* "$out/katex/fonts/"
 cp node_modules/katex/LICENSE "$out/katex/"

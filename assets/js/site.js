@@ -1,6 +1,7 @@
-// Behaviour of every page: the phone menu, copy buttons on code blocks, heading links
-// and the image lightbox. Everything here improves a page that already works without
-// scripts: navigation, tables of contents, badges and captions are in the HTML.
+// Behaviour of every page: the phone menu, copy buttons on code blocks, heading links,
+// the image lightbox and the keyboard reaching wide formulas. Everything here improves a
+// page that already works without scripts: navigation, tables of contents, badges,
+// captions and formulas are in the HTML.
 (function () {
   "use strict";
 
@@ -184,11 +185,32 @@
     });
   }
 
+  // ---- Formulas: one wider than the page scrolls sideways in its own line ----------
+  // (.katex-display in main.css; the formulas are typeset when the site is built). Only
+  // one that scrolls joins the tab order, so that keyboard users can scroll it too.
+  function letWideFormulasScroll() {
+    var formulas = document.querySelectorAll(".katex-display");
+    if (!formulas.length) return;
+
+    function mark() {
+      formulas.forEach(function (formula) {
+        if (formula.scrollWidth > formula.clientWidth) formula.setAttribute("tabindex", "0");
+        else formula.removeAttribute("tabindex");
+      });
+    }
+
+    mark();
+    // KaTeX's fonts change the formulas' widths once they load, and a turned phone the page's.
+    if (document.fonts) document.fonts.ready.then(mark);
+    window.addEventListener("resize", mark);
+  }
+
   function start() {
     setUpMenu();
     addCopyButtons();
     addHeadingLinks();
     setUpLightbox();
+    letWideFormulasScroll();
   }
 
   if (document.readyState === "loading") document.addEventListener("DOMContentLoaded", start);

@@ -267,15 +267,41 @@ def test_no_unrendered_dollar_math(site, sources):
     assert not problems, "write inline math as $$...$$:\n" + "\n".join(problems)
 
 
-def test_pages_with_math_load_the_math_renderer(site):
-    """kramdown turns $$...$$ into \\(...\\) or \\[...\\]; without `math: true` they stay as text."""
-    missing = []
+# Where raw TeX could hide in a built page: code shows TeX on purpose, and KaTeX keeps
+# each formula's source in the MathML's <annotation> for screen readers and copying.
+NOT_PROSE = re.compile(r"<(pre|code|script|annotation)\b.*?</\1>", re.S)
+MATH_SOURCE = re.compile(r"\$\$.+?\$\$", re.S)
+FENCED_CODE = re.compile(r"^(\s*)(```|~~~).*?^\1\2", re.S | re.M)
+
+
+def test_math_is_typeset_when_the_site_is_built(site, sources):
+    """_plugins/math.rb turns every $$...$$ into KaTeX's HTML: no page shows TeX or its
+    delimiters, none loads the KaTeX script, and every page with a formula carries
+    KaTeX's markup and links its stylesheet."""
+    problems = []
     for page in sorted(site.rglob("*.html")):
-        html = page.read_text()
-        text = re.sub(r"<(pre|code|script)\b.*?</\1>", "", html, flags=re.S)
-        if ("\\(" in text or "\\[" in text) and "/assets/js/math.js" not in html:
-            missing.append(str(page.relative_to(site)))
-    assert not missing, "add `math: true` to the front matter of:\n" + "\n".join(missing)
+        html = page.read_text(encoding="utf-8")
+        name = str(page.relative_to(site))
+        text = NOT_PROSE.sub("", html)
+        for delimiter in ("$$", "\\(", "\\[", "<kramdown-math"):
+            if delimiter in text:
+                at = text.index(delimiter)
+                problems.append(f"{name}: raw TeX ...{text[max(0, at - 40):at + 60]}...")
+        scripts = re.findall(r"<script\b[^>]*>", html)
+        problems += [f"{name}: loads {tag}" for tag in scripts if re.search(r"katex|math\.js", tag, re.I)]
+        if 'class="katex' in html and "/assets/vendor/katex/katex.min.css" not in html:
+            problems.append(f"{name}: KaTeX markup without the KaTeX stylesheet")
+    with_math = 0
+    for path, front in sources["pages"].items():
+        source = FENCED_CODE.sub("", (ROOT / path).read_text(encoding="utf-8"))
+        if not (front and front.get("permalink")) or not MATH_SOURCE.search(source):
+            continue
+        with_math += 1
+        html = built_page(site, front["permalink"]).read_text(encoding="utf-8")
+        if '<span class="katex">' not in html:
+            problems.append(f"{path}: has $$...$$ but its page has no .katex element")
+    assert with_math, "no page has math: the check above proves nothing"
+    assert not problems, "\n".join(problems)
 
 
 def test_images_load_lazily(site):
@@ -322,7 +348,6 @@ DEMO_PAGE = '''\
 ---
 title: Demo
 permalink: /demo/
-math: true
 ---
 
 ## Code
@@ -354,7 +379,9 @@ import rospy
 ![A figure](/media/figure.png)
 *The caption.*
 
-Math: $$a^2 + b^2 = c^2$$
+Math: $$a^2 + b^2 = c^2$$, and displayed:
+
+$$\\frac{a}{b} < c$$
 '''
 
 
@@ -367,6 +394,9 @@ def _tiny_site(root: Path, pages: dict[str, str]) -> Path:
             shutil.copytree(source, root / name)
         else:
             shutil.copy2(source, root / name)
+    # tools/render-math.mjs typesets the math with KaTeX from this repository's node_modules
+    # (Node finds it from the script's real path).
+    (root / "tools").symlink_to(ROOT / "tools", target_is_directory=True)
     for relative, text in pages.items():
         (root / relative).parent.mkdir(parents=True, exist_ok=True)
         (root / relative).write_text(text, encoding="utf-8")
@@ -423,10 +453,21 @@ def test_figure_caption_and_lazy_image(demo):
                      r"<figcaption>The caption.</figcaption></figure>", page), "image + italic line is not a figure"
 
 
-def test_math_pages_load_katex(demo):
+def test_math_is_typeset_at_build_time(demo):
+    """Inline and displayed formulas become KaTeX's HTML, with the TeX (unescaped once) in
+    the MathML annotation; the page links KaTeX's stylesheet (the page sets no `math:`)
+    and loads no script of KaTeX's."""
     page = _demo_page(demo)
-    assert "/assets/vendor/katex/katex.min.js" in page and "/assets/js/math.js" in page
-    assert r"\(a^2 + b^2 = c^2\)" in page
+    body = between(page, '<div class="page-body">', "</main>")
+    inline = between(body, "Math: ", ", and displayed")
+    assert inline.startswith('Math: <span class="katex"><span class="katex-mathml">'), inline[:200]
+    assert '<annotation encoding="application/x-tex">a^2 + b^2 = c^2</annotation>' in inline
+    assert "katex-display" not in inline, "an inline formula was typeset as displayed"
+    display = between(body, '<span class="katex-display">', "</main>")
+    assert '<annotation encoding="application/x-tex">\\frac{a}{b} &lt; c</annotation>' in display, display[:600]
+    assert "<kramdown-math" not in page and "\\(" not in body and "$$" not in body
+    assert "/assets/vendor/katex/katex.min.css" in page
+    assert not re.search(r"<script[^>]*(katex|math\.js)", page), "the page still loads a KaTeX script"
 
 
 def test_verbatim_examples(demo):
@@ -445,6 +486,13 @@ def _failing_build(tmp_path: Path, page: str) -> str:
 
 
 PAGE_HEAD = "---\ntitle: Broken\npermalink: /broken/\n---\n\n"
+
+
+def test_math_katex_cannot_typeset_fails_the_build(bundle, tmp_path):
+    """A formula KaTeX rejects stops the build, naming the page and the formula."""
+    log = _failing_build(tmp_path, PAGE_HEAD + "Fine: $$x^2$$.\n\n$$\\frac{1}{\\nosuchmacro}$$\n")
+    assert "_pages/broken.md" in log and "\\frac{1}{\\nosuchmacro}" in log, log
+    assert "Undefined control sequence" in log, log
 
 
 def test_liquid_in_a_code_block_fails_the_build(bundle, tmp_path):

@@ -6,7 +6,8 @@ response's Content-Length is what crosses the network), fonts and images as they
 a folder's index.html for its address, and leave to cache for ten minutes. The browser
 still reports a response taken from its cache, with the headers it was first sent with,
 so a page's weight is the same whatever was loaded before; caching only spares the
-browser compiling KaTeX, and the test tools injected into pages, again for every page.
+browser compiling the site's scripts, and the test tools injected into pages, again for
+every page.
 
 Test tools from node_modules (axe-core, say) are served under NODE_MODULES_URL.
 """
