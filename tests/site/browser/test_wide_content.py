@@ -88,3 +88,19 @@ def test_no_page_scrolls_sideways_and_no_table_is_cut(browser_page, site, size):
         page.set_viewport_size({"width": 1280, "height": 800})
     assert not wide_pages, f"pages wider than {size['width']} px: {wide_pages}"
     assert not cut_tables, f"tables cut off at {size['width']} px: {cut_tables}"
+
+
+def test_a_blocks_output_is_as_wide_as_the_block(browser_page):
+    """At 1366 × 900 the output under a block lines up with the block's both edges."""
+    page = with_viewport(browser_page, LAPTOP)
+    try:
+        browser_page.visit("/practice-1/modelling/")
+        pairs = page.evaluate("""() => [...document.querySelectorAll('details.code-output')]
+            .map(out => [out.previousElementSibling.getBoundingClientRect(),
+                         out.getBoundingClientRect()])
+            .map(([code, out]) => [code.left, code.right, out.left, out.right])""")
+    finally:
+        page.set_viewport_size({"width": 1280, "height": 800})
+    assert pairs, "no block output on /practice-1/modelling/"
+    for code_left, code_right, out_left, out_right in pairs:
+        assert abs(code_left - out_left) < 1 and abs(code_right - out_right) < 1, pairs
