@@ -17,7 +17,6 @@ import os
 import random
 import select
 import shutil
-import signal
 import socket
 import subprocess
 import tempfile
@@ -28,6 +27,8 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
+
+from sw2sim.ros.run import stop
 
 from . import ROOT
 from .rviz_config import BACKGROUND, WINDOW
@@ -40,7 +41,6 @@ SCREEN = (WINDOW["Width"], WINDOW["Height"])
 START_TIMEOUT = 15.0     # s for Xvfb to open its display and roscore to answer
 ROBOT_TIMEOUT = 40.0     # s for the robot to show (several figures may be made at once)
 SETTLED = 3              # grabs in a row with the same 3D view
-STOP_WAIT = 5.0          # s between SIGINT and SIGKILL
 
 
 def missing() -> str | None:
@@ -55,49 +55,6 @@ def missing() -> str | None:
         return None
     return (f"not installed: {', '.join(dict.fromkeys(absent))} (`make setup` installs them "
             "where Debian ships ROS 1)")
-
-
-def _below(pid: int) -> list[int]:
-    """Every process below `pid`, read from /proc: roslaunch starts each node in a session
-    of its own, out of reach of its process group."""
-    children: dict[int, list[int]] = {}
-    for entry in Path("/proc").glob("[0-9]*"):
-        try:
-            parent = int((entry / "stat").read_text().rsplit(")", 1)[1].split()[1])
-        except (OSError, IndexError, ValueError):
-            continue
-        children.setdefault(parent, []).append(int(entry.name))
-    found, todo = [], [pid]
-    while todo:
-        for child in children.get(todo.pop(), []):
-            found.append(child)
-            todo.append(child)
-    return found
-
-
-def _signal(pids, sig) -> None:
-    for pid in pids:
-        try:
-            os.kill(pid, sig)
-        except (ProcessLookupError, PermissionError):
-            pass
-
-
-def _stop(process: subprocess.Popen) -> None:
-    """A process, its group and every process below it: SIGINT first (roslaunch stops its
-    nodes, Xvfb removes its lock file), SIGKILL for what is left after STOP_WAIT."""
-    below = _below(process.pid)
-    for sig in (signal.SIGINT, signal.SIGKILL):
-        try:
-            os.killpg(process.pid, sig)
-        except (ProcessLookupError, PermissionError):
-            pass
-        _signal(below, sig)
-        deadline = time.monotonic() + STOP_WAIT
-        while time.monotonic() < deadline:
-            if process.poll() is not None and not any(Path(f"/proc/{p}").exists() for p in below):
-                return
-            time.sleep(0.05)
 
 
 @dataclass
@@ -123,7 +80,7 @@ def _start_xvfb(number: int, size: tuple[int, int]) -> tuple[subprocess.Popen, i
     if ready == str(number).encode():
         return process, read
     os.close(read)
-    _stop(process)
+    stop(process)
     return None
 
 
@@ -147,7 +104,7 @@ def xvfb(size: tuple[int, int] = SCREEN):
     try:
         yield Screen(f":{number}", process)
     finally:
-        _stop(process)
+        stop(process)
         os.close(pipe)
 
 
@@ -292,7 +249,7 @@ def picture(package: Path) -> np.ndarray:
         log = open(home / "launch.log", "wb")
         stack.callback(log.close)
         started = []
-        stack.callback(lambda: [_stop(p) for p in reversed(started)])
+        stack.callback(lambda: [stop(p) for p in reversed(started)])
         for command in (["roscore", "-p", str(port)],
                         ["roslaunch", "--wait", package.name, "display.launch"]):
             started.append(subprocess.Popen(command, env=env, stdout=log, stderr=subprocess.STDOUT,

@@ -377,16 +377,8 @@ class Session:
 
     def leftovers(self) -> list[int]:
         """The processes it started (and those below them) that still run after close()."""
-        alive = []
-        for pid in self.stopped:
-            try:
-                os.kill(pid, 0)
-            except ProcessLookupError:
-                continue
-            except PermissionError:
-                pass
-            alive.append(pid)
-        return alive
+        from sw2sim.ros.run import running
+        return running(self.stopped)
 
 
 def package_of(ros: str) -> str:

@@ -100,6 +100,11 @@ def _alive(pid: int) -> bool:
     return True
 
 
+def running(pids) -> list[int]:
+    """The processes of `pids` that still run."""
+    return [pid for pid in pids if _alive(pid)]
+
+
 def stop(process: subprocess.Popen) -> None:
     """Stop a process, its group and everything below it: SIGINT first (as Ctrl-C, which
     lets roslaunch stop its nodes in order), SIGKILL for what is left after STOP_WAIT."""

@@ -100,16 +100,8 @@ class Ros:
 
     def leftovers(self) -> list[int]:
         """The processes started here (and below them) that are still running."""
-        alive = []
-        for pid in [p.pid for p in self.processes] + self.below:
-            try:
-                os.kill(pid, 0)
-            except ProcessLookupError:
-                continue
-            except PermissionError:
-                pass
-            alive.append(pid)
-        return alive
+        from sw2sim.ros.run import running
+        return running([p.pid for p in self.processes] + self.below)
 
 
 def _stop(process: subprocess.Popen, below: list[int]) -> None:

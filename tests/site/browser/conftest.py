@@ -17,6 +17,7 @@ server, one browser and two tabs serve the whole session:
   for tests that click, type or run scripts; `visit(path, then=...)` runs such steps
   after the load, and their errors and requests are recorded with the page's.
   `second_browser_page` is another tab like it, for work that can overlap;
+  `phone` is a tab of a module's own, 390 × 844 (PHONE);
 - `link_check`: html-proofer over _site (html_proofer.py), started with the first
   browser test so that it runs on one core while the browser uses the other.
 
@@ -56,6 +57,7 @@ CHROMIUM_ARGS = [
 ]
 # A page that settles takes well under a second here; this only bounds a hung one.
 SETTLE_TIMEOUT_S = 10.0
+PHONE = {"width": 390, "height": 844}   # CSS pixels of the phone the tests use
 
 IMAGES_JS = """() => Array.from(document.images, img => ({
     src: img.currentSrc || img.src,
@@ -327,3 +329,14 @@ def link_check(request) -> HtmlProofer | None:
         yield check
     finally:
         check.stop()
+
+
+@pytest.fixture(scope="module")
+def phone(browser, site):
+    """A tab the size of a phone (390 × 844 CSS pixels)."""
+    context = browser.new_context(viewport=PHONE)
+    context.set_default_timeout(SETTLE_TIMEOUT_S * 1000)
+    try:
+        yield BrowserPage(context.new_page(), site)
+    finally:
+        context.close()

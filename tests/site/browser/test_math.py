@@ -6,25 +6,13 @@ own line (.katex-display in assets/css/main.css) instead of widening the page.
 import pytest
 
 import axe_audit
-from conftest import SETTLE_TIMEOUT_S, BrowserPage
+from conftest import PHONE
 
-PHONE = {"width": 390, "height": 844}
 ACKERMANN = "/practice-5/ackermann-geometry/"
 # Equation 4 of the Ackermann page, the widest formula of the site: both wheels' angles.
 EQUATION_4 = r"\Phi_o = \arctan \left(\frac{2l \sin \Phi}{2l \cos \Phi + w \sin \Phi} \right)"
 
 PAGE_WIDTH_JS = "() => [document.scrollingElement.scrollWidth, window.innerWidth]"
-
-
-@pytest.fixture(scope="module")
-def phone(browser, site):
-    """A tab the size of a phone (390 × 844 CSS pixels)."""
-    context = browser.new_context(viewport=PHONE)
-    context.set_default_timeout(SETTLE_TIMEOUT_S * 1000)
-    try:
-        yield BrowserPage(context.new_page(), site)
-    finally:
-        context.close()
 
 
 def equation_4(page):

@@ -12,10 +12,9 @@ import yaml
 from playwright.sync_api import TimeoutError as PlaywrightTimeout
 
 import axe_audit
-from conftest import SETTLE_TIMEOUT_S, BrowserPage
+from conftest import PHONE
 from repository import ROOT
 
-PHONE = {"width": 390, "height": 844}
 NAVIGATION = ROOT / "_data" / "navigation.yml"
 
 
@@ -23,17 +22,6 @@ def last_navigation_url() -> str:
     """The url of the last entry of _data/navigation.yml (a section's last child)."""
     last = yaml.safe_load(NAVIGATION.read_text(encoding="utf-8"))[-1]
     return last["children"][-1]["url"] if "children" in last else last["url"]
-
-
-@pytest.fixture(scope="module")
-def phone(browser, site):
-    """A tab the size of a phone (390 × 844 CSS pixels)."""
-    context = browser.new_context(viewport=PHONE)
-    context.set_default_timeout(SETTLE_TIMEOUT_S * 1000)
-    try:
-        yield BrowserPage(context.new_page(), site)
-    finally:
-        context.close()
 
 
 def box(locator) -> dict:
