@@ -34,7 +34,8 @@ def _wheel_pulses(ros, session) -> None:
     """Practice 1: every pulse of the node adds the page's 62.6 rad/s to each wheel."""
     from course.practices import PRACTICES, design
     page_step = 62.6   # rad/s, _pages/practice-1/05-custom-node.md
-    done = ros.python(RECORD, "+12", "/joint_states", timeout=120)
+    # A pulse every 10 s, 1 s long: 13 s hold a whole pulse wherever the recording begins.
+    done = ros.python(RECORD, "+13", "/joint_states", timeout=120)
     assert done.returncode == 0, done.stdout[-2000:] + done.stderr[-2000:]
     record = json.loads(done.stdout.splitlines()[-1])
     joints = design(PRACTICES[0]).robot().movable_joints()
@@ -42,10 +43,11 @@ def _wheel_pulses(ros, session) -> None:
     for joint in joints:
         speed = np.array([s[joint.name] for _, s in record["speeds"]])
         assert len(speed) > 100, "the wheels' states arrive on /joint_states"
-        # Between pulses the speed holds; each pulse adds the same step.
-        plateaus = [float(speed[0])]
+        # Between pulses the speed holds; each pulse adds the same step. The recording may
+        # begin during a pulse, so only speeds that hold count.
+        plateaus = []
         for value, change in zip(speed[1:], np.diff(speed)):
-            if abs(change) < 1e-6 and abs(value - plateaus[-1]) > 1.0:
+            if abs(change) < 1e-6 and (not plateaus or abs(value - plateaus[-1]) > 1.0):
                 plateaus.append(float(value))
         gains = np.diff(plateaus)
         assert len(gains) >= 1, (joint.name, plateaus)
