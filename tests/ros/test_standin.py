@@ -31,9 +31,11 @@ def test_the_arm_reaches_each_random_setpoint(ros):
             ros.env["DISPLAY"] = screen.display
         ros.start(sys.executable, "-m", "sw2sim", "ros", str(EXAMPLES / "example_3"),
                   *(["--view"] if view else []), "--realtime", "0", name="sw2sim_ros")
+        # 21 s from when the recorder starts, wherever the simulation is by then: four
+        # setpoints every 5 s, each held long enough to be judged.
         commands = {"middle_arm_joint": f"{NS}/middle_arm_controller/command",
                     "end_arm_joint": f"{NS}/end_arm_controller/command"}
-        done = ros.python(RECORD, "21", f"{NS}/joint_states", *commands.values(), timeout=120)
+        done = ros.python(RECORD, "+21", f"{NS}/joint_states", *commands.values(), timeout=120)
         if view:   # black until a window opens
             lit = float(np.mean(rviz_picture.grab(screen.display).max(axis=2) > 40))
             log = (ros.logs / "sw2sim_ros.log").read_text(errors="replace")
