@@ -45,6 +45,10 @@ WINDOWS = frozenset({"rqt_plot", "rviz", "rqt", "rqt_graph", "rqt_console", "rqt
 COMMAND_TIMEOUT = 30.0   # s for a command that ends, or for what it names to exist
 SETTLE_TIMEOUT = 30.0    # s for a launch to come up
 QUIET = 0.5              # s without a new node: the launch is up
+# Simulated seconds per wall second. Ten times real time passes the pages' minutes of
+# simulated time in seconds, while the simulation still leaves the machine's cores to
+# the nodes (at 0, as fast as it goes, it would take a core of its own throughout).
+REALTIME = 10.0
 # What a launch must not print.
 LAUNCH_FAULTS = re.compile(r"Traceback \(most recent call last\)|process has died|\[ERROR\]"
                            r"|^ERROR:", re.MULTILINE)
@@ -149,7 +153,7 @@ class Session:
         for name in packages:
             if not (source / name).exists():
                 shutil.copytree(self.root / "examples" / name, source / name)
-        env = environment(source / packages[0], realtime=0)
+        env = environment(source / packages[0], realtime=REALTIME)
         home = self.folder / "home"
         home.mkdir(exist_ok=True)
         self.env = {**env, **{k: v for k, v in self.env.items() if k.startswith("ROS_")
@@ -361,19 +365,21 @@ class Session:
                                                             f"in {COMMAND_TIMEOUT:g} s")
 
     def stop_launches(self) -> None:
-        for r in [r for r in self.running if r.command.words[0] == "roslaunch"]:
+        launches = [r for r in self.running if r.command.words[0] == "roslaunch"]
+        if launches:
             self.check_running()
-            self._stop(r)
-            self.running.remove(r)
+            self._stop(*launches)
+            self.running = [r for r in self.running if r not in launches]
 
     def close(self) -> None:
-        for r in reversed(self.running):
-            self._stop(r)
+        self._stop(*self.running)
 
-    def _stop(self, r: Running) -> None:
+    def _stop(self, *running: Running) -> None:
+        """Stop them all at once, as closing their terminals would."""
         from sw2sim.ros.run import descendants, stop
-        self.stopped += [r.process.pid, *descendants(r.process.pid)]
-        stop(r.process)
+        for r in running:
+            self.stopped += [r.process.pid, *descendants(r.process.pid)]
+        stop(*(r.process for r in running))
 
     def leftovers(self) -> list[int]:
         """The processes it started (and those below them) that still run after close()."""

@@ -93,6 +93,19 @@ def static_transform_publisher(args: list[str]) -> int:
     return 0
 
 
+def _without_clock() -> None:
+    """Keep rospy from following /clock in these nodes: none of them reads the time, and
+    at a high real-time factor the clock's messages would cost them more than their work."""
+    import rospy.impl.simtime
+    import rospy.rostime
+
+    def wall_time() -> bool:
+        rospy.rostime.set_rostime_initialized(True)
+        return True
+
+    rospy.impl.simtime.init_simtime = wall_time
+
+
 NODES = {"spawn_model": spawn_model, "spawner": spawner,
          "static_transform_publisher": static_transform_publisher}
 
@@ -104,6 +117,7 @@ def main(argv: list[str] | None = None) -> int:
         print(f"usage: python -m sw2sim.ros.nodes {{{','.join(NODES)}}} ...", file=sys.stderr)
         return 2
     messages.ensure()
+    _without_clock()
     try:
         return NODES[argv[0]](argv[1:])
     except KeyboardInterrupt:

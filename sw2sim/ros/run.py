@@ -105,31 +105,35 @@ def running(pids) -> list[int]:
     return [pid for pid in pids if _alive(pid)]
 
 
-def stop(process: subprocess.Popen) -> None:
-    """Stop a process, its group and everything below it: SIGINT first (as Ctrl-C, which
-    lets roslaunch stop its nodes in order), SIGKILL for what is left after STOP_WAIT."""
-    below = descendants(process.pid)
+def stop(*processes: subprocess.Popen) -> None:
+    """Stop processes, their groups and everything below them, all at once: SIGINT first
+    (as Ctrl-C, which lets roslaunch stop its nodes in order), SIGKILL for what is left
+    after STOP_WAIT."""
+    below = [pid for process in processes for pid in descendants(process.pid)]
+
+    def alive() -> bool:
+        return any(p.poll() is None for p in processes) or any(_alive(pid) for pid in below)
+
     for sig in (signal.SIGINT, signal.SIGKILL):
-        try:
-            os.killpg(process.pid, sig)
-        except ProcessLookupError:
-            pass
+        for process in processes:
+            with _quiet():
+                os.killpg(process.pid, sig)
         if sig == signal.SIGKILL:
             for pid in below:
                 with _quiet():
                     os.kill(pid, signal.SIGKILL)
         deadline = time.monotonic() + STOP_WAIT
-        while time.monotonic() < deadline and (process.poll() is None or
-                                               any(_alive(p) for p in below)):
+        while time.monotonic() < deadline and alive():
             time.sleep(0.05)
-        if process.poll() is not None and not any(_alive(p) for p in below):
+        if not alive():
             break
         if sig == signal.SIGINT:   # the nodes roslaunch left: Ctrl-C them too
             for pid in below:
                 with _quiet():
                     os.kill(pid, signal.SIGINT)
-    with _quiet():
-        process.wait(timeout=STOP_WAIT)
+    for process in processes:
+        with _quiet():
+            process.wait(timeout=STOP_WAIT)
 
 
 class _quiet:
@@ -188,5 +192,4 @@ def run(path: str, launch: str | None = None, duration: float | None = None,
     except KeyboardInterrupt:
         return 130
     finally:
-        for process in reversed(started):
-            stop(process)
+        stop(*started)

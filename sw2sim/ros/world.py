@@ -3,7 +3,9 @@
 One process, started by the stand-in `gazebo_ros/empty_world.launch` (sw2sim.ros.packages),
 gives ROS what the lessons use of Gazebo:
 
-- `/clock` (rosgraph_msgs/Clock) at CLOCK_HZ of simulated time; the launch file sets
+- `/clock` (rosgraph_msgs/Clock) at CLOCK_HZ of simulated time, and no more often than
+  CLOCK_HZ times a second of wall time (run faster than real time, every node that
+  follows the clock would otherwise spend its time reading it); the launch file sets
   `use_sim_time`;
 - `/gazebo/spawn_urdf_model` (what `spawn_model` calls), `/gazebo/pause_physics`,
   `unpause_physics`, `reset_simulation`, `reset_world`, `apply_joint_effort`,
@@ -42,12 +44,16 @@ import threading
 import time
 from pathlib import Path
 
-import mujoco
-import numpy as np
+if os.environ.get("SW2SIM_VIEW") != "1":
+    # Nothing to draw: MuJoCo then skips loading OpenGL (a third of a second at start).
+    os.environ["MUJOCO_GL"] = "disable"
 
-from . import hardware
+import mujoco  # noqa: E402  (after the choice above, which MuJoCo reads once)
+import numpy as np  # noqa: E402
 
-CLOCK_HZ = 200.0          # /clock messages per simulated second
+from . import hardware  # noqa: E402
+
+CLOCK_HZ = 100.0          # /clock messages per simulated (and at most per wall) second
 STATE_HZ = 50.0           # controller state messages per simulated second
 POSITION, VELOCITY, EFFORT = hardware.POSITION, hardware.VELOCITY, hardware.EFFORT
 JOINT_STATE = "joint_state_controller/JointStateController"
@@ -112,6 +118,7 @@ class World:
         self.efforts: dict[str, tuple[float, float | None]] = {}  # joint -> (effort, until)
         self.handles: dict[str, hardware.Handle] = {}
         self.next_clock = 0.0
+        self.next_clock_wall = 0.0
 
     # -- the model ---------------------------------------------------------------------
     def spawn(self, model_xml: str, namespace: str) -> str:
@@ -308,10 +315,12 @@ class World:
     # -- publishing ----------------------------------------------------------------------
     def _publish(self, now: float) -> None:
         rospy = self.rospy
-        if now >= self.next_clock:
+        wall = time.monotonic()
+        if now >= self.next_clock and wall >= self.next_clock_wall:
             from rosgraph_msgs.msg import Clock
             self.clock.publish(Clock(clock=rospy.Time.from_sec(now)))
             self.next_clock = now + 1.0 / CLOCK_HZ
+            self.next_clock_wall = wall + 1.0 / CLOCK_HZ
         for c in list(self.controllers.values()):
             if not c.running or now < c.next_publish:
                 continue

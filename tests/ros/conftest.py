@@ -15,15 +15,17 @@ import socket
 import subprocess
 import sys
 import time
+import uuid
 import xmlrpc.client
 from pathlib import Path
 
 import pytest
 
 # Why the ROS tests cannot run here, or None when they can.
-MISSING = (None if shutil.which("roscore") and importlib.util.find_spec("rospy")
+MISSING = (None if shutil.which("rosmaster") and importlib.util.find_spec("rospy")
            else "ROS 1 is not installed: `make setup` installs it from Debian where the "
                 "distribution ships it (Debian 12 does; Ubuntu 24.04 and Debian 13 do not)")
+ROSOUT = "/usr/lib/rosout/rosout"   # Debian's
 MASTER_TIMEOUT = 15.0   # s for roscore to answer
 STOP_TIMEOUT = 5.0      # s between SIGINT and SIGKILL
 
@@ -70,7 +72,7 @@ class Ros:
             out, err = process.communicate(timeout=timeout)
         except subprocess.TimeoutExpired:
             from sw2sim.ros.run import descendants
-            _stop(process, descendants(process.pid))
+            _stop([process], descendants(process.pid))
             out, err = process.communicate()
             raise AssertionError(f"{command[0]} did not finish in {timeout:.0f} s:\n{out}\n{err}")
         return subprocess.CompletedProcess(command, process.returncode, out, err)
@@ -88,15 +90,17 @@ class Ros:
                 return
             except OSError:
                 time.sleep(0.1)
-        raise AssertionError(f"roscore did not answer on {self.uri} in {MASTER_TIMEOUT:.0f} s:\n"
-                             + (self.logs / "roscore.log").read_text(errors="replace"))
+        raise AssertionError(f"rosmaster did not answer on {self.uri} in {MASTER_TIMEOUT:.0f} s:\n"
+                             + (self.logs / "rosmaster.log").read_text(errors="replace"))
 
     def stop_all(self) -> None:
+        """Everything at once, then the master last (nodes unregister from it as they go)."""
         from sw2sim.ros.run import descendants
-        for process in reversed(self.processes):
-            below = descendants(process.pid)
-            self.below.extend(below)
-            _stop(process, below)
+        for process in self.processes:
+            self.below.extend(descendants(process.pid))
+        nodes, master = self.processes[1:], self.processes[:1]
+        for group in (nodes, master):
+            _stop(group, self.below)
 
     def leftovers(self) -> list[int]:
         """The processes started here (and below them) that are still running."""
@@ -104,11 +108,12 @@ class Ros:
         return running([p.pid for p in self.processes] + self.below)
 
 
-def _stop(process: subprocess.Popen, below: list[int]) -> None:
-    """The process, its group and every process below it, as `sw2sim ros` stops them."""
-    from sw2sim.ros.run import stop
-    stop(process)
-    for pid in below:
+def _stop(processes: list[subprocess.Popen], below: list[int]) -> None:
+    """The processes, their groups and every process below them, as `sw2sim ros` stops
+    them; then whatever of `below` still runs is killed."""
+    from sw2sim.ros.run import running, stop
+    stop(*processes)
+    for pid in running(below):
         try:
             os.kill(pid, signal.SIGKILL)
         except (ProcessLookupError, PermissionError):
@@ -123,8 +128,13 @@ def ros(tmp_path):
         pytest.skip(MISSING)
     world = Ros(tmp_path / "ros_home")
     try:
-        world.start("roscore", "-p", str(world.port), name="roscore")
+        # What `roscore` starts, without the roslaunch process it runs them under (a
+        # second or so of start-up per test): the master, the run id, the /rosout node.
+        world.start("rosmaster", "--core", "-p", str(world.port), "-w", "3", name="rosmaster")
         world.wait_for_master()
+        # roscore's run id: `roslaunch --wait` waits for it
+        xmlrpc.client.ServerProxy(world.uri).setParam("/roscore", "/run_id", str(uuid.uuid1()))
+        world.start(ROSOUT, "__name:=rosout", name="rosout")
         yield world
     finally:
         world.stop_all()

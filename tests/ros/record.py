@@ -46,8 +46,10 @@ def main() -> int:
     states, speeds, commands = [], [], {topic: [] for topic in command_topics}
 
     def state(message):
-        states.append([rospy.get_time(), dict(zip(message.name, message.position))])
-        speeds.append([rospy.get_time(), dict(zip(message.name, message.velocity))])
+        # the simulation's own time of the state (the clock's messages may be coarser)
+        t = message.header.stamp.to_sec() or rospy.get_time()
+        states.append([t, dict(zip(message.name, message.position))])
+        speeds.append([t, dict(zip(message.name, message.velocity))])
 
     rospy.Subscriber(states_topic, JointState, state)
     for topic in command_topics:

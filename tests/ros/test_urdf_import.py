@@ -65,21 +65,36 @@ def poses_from_mujoco(model, data) -> dict[str, np.ndarray]:
 
 
 def test_robot_state_publisher_agrees_with_mujoco(ros):
-    """Every example in turn, under one master: the publisher is started on the example's
-    description and stopped before the next."""
-    from sw2sim.ros.run import stop
+    """Every example at once, under one master: each robot_state_publisher reads its
+    example's description in a namespace of its own, and one probe sets the joints of all."""
+    import rosgraph
+    master = rosgraph.Master("/test_urdf_import", master_uri=ros.uri)
+    robots, expected = {}, {}
     for n in practice_numbers():
-        publisher = agrees(ros, n)
-        stop(publisher)
+        ns, package = f"/example_{n}", EXAMPLES / f"example_{n}"
+        master.setParam(f"{ns}/robot_description",
+                        next((package / "urdf").glob("*.urdf")).read_text())
+        ros.start(ROBOT_STATE_PUBLISHER, f"__ns:={ns}", f"/tf:={ns}/tf",
+                  f"/tf_static:={ns}/tf_static", name=f"robot_state_publisher_{n}")
+        robots[ns], expected[ns] = random_pose(package, n)
+
+    done = ros.python(PROBE, json.dumps(robots))
+    assert done.returncode == 0, done.stdout + done.stderr
+    answers = json.loads(done.stdout.splitlines()[-1])
+    for ns, poses in expected.items():
+        seen = poses_from_tf(answers[ns])
+        assert set(seen) == set(poses) - {BASE}, (ns, sorted(seen), sorted(poses))
+        for frame, pose in seen.items():
+            mine = poses[frame]
+            assert np.allclose(pose[:3, 3], mine[:3, 3], atol=1e-4), (ns, frame)
+            turn = pose[:3, :3].T @ mine[:3, :3]
+            angle = np.arccos(np.clip((np.trace(turn) - 1) / 2, -1, 1))
+            assert angle < 1e-4, (ns, frame, angle)
 
 
-def agrees(ros, n: int):
-    """Check example n; return its robot_state_publisher process."""
-    package = EXAMPLES / f"example_{n}"
-    urdf = next((package / "urdf").glob("*.urdf")).read_text()
-    assert ros.run("rosparam", "set", "/robot_description", urdf).returncode == 0
-    publisher = ros.start(ROBOT_STATE_PUBLISHER, name=f"robot_state_publisher_{n}")
-
+def random_pose(package: Path, n: int) -> tuple[dict, dict[str, np.ndarray]]:
+    """Random positions of example n's joints (what the probe publishes, and how many
+    frames to wait for), and MuJoCo's link poses for them in the base link's frame."""
     model = load_package(package, fixed_base=world_fixed(package), scene=False).compile()
     data = mujoco.MjData(model)
     rng = np.random.default_rng(n)
@@ -92,18 +107,7 @@ def agrees(ros, n: int):
             names.append(model.joint(j).name)
             angles.append(value)
     mujoco.mj_kinematics(model, data)
-    expected = poses_from_mujoco(model, data)
-
+    poses = poses_from_mujoco(model, data)
     # Every link but the base has a frame on /tf; a base fixed to "world" has one too.
-    frames = len(expected) - 1 + (1 if world_fixed(package) else 0)
-    done = ros.python(PROBE, json.dumps(names), json.dumps(angles), str(frames))
-    assert done.returncode == 0, done.stdout + done.stderr
-    seen = poses_from_tf(json.loads(done.stdout.splitlines()[-1]))
-    assert set(seen) == set(expected) - {BASE}, (sorted(seen), sorted(expected))
-    for frame, pose in seen.items():
-        mine = expected[frame]
-        assert np.allclose(pose[:3, 3], mine[:3, 3], atol=1e-4), (n, frame)
-        turn = pose[:3, :3].T @ mine[:3, :3]
-        angle = np.arccos(np.clip((np.trace(turn) - 1) / 2, -1, 1))
-        assert angle < 1e-4, (n, frame, angle)
-    return publisher
+    frames = len(poses) - 1 + (1 if world_fixed(package) else 0)
+    return {"names": names, "positions": angles, "frames": frames}, poses

@@ -1,10 +1,11 @@
-"""Publish one set of joint positions on /joint_states and print, as JSON, every transform
-robot_state_publisher answers with on /tf and /tf_static: child -> [parent, xyz, xyzw].
+"""Publish one set of joint positions for each robot and print, as JSON, every transform
+its robot_state_publisher answers with: {namespace: {child: [parent, xyz, xyzw]}}.
 
-    python tf_probe.py '["joint_a", ...]' '[0.5, ...]' FRAMES
+    python tf_probe.py '{"/example_1": {"names": [...], "positions": [...], "frames": 4}, ...}'
 
-Run by tests/ros/test_urdf_import.py in a process of its own (rospy allows one node per
-process), with the test's ROS_MASTER_URI; it stops once FRAMES transforms have arrived.
+Each robot's robot_state_publisher runs in the robot's namespace, with /tf and /tf_static
+remapped into it (tests/ros/test_urdf_import.py), so that one probe (rospy allows one node
+per process) reads them all apart. It stops once every robot has sent its frames.
 """
 
 import json
@@ -19,28 +20,35 @@ TIMEOUT = 15.0
 
 
 def main() -> int:
-    names, positions, frames = json.loads(sys.argv[1]), json.loads(sys.argv[2]), int(sys.argv[3])
+    robots = json.loads(sys.argv[1])
     rospy.init_node("tf_probe", anonymous=True, disable_signals=True)
-    seen: dict[str, list] = {}
+    seen: dict[str, dict[str, list]] = {ns: {} for ns in robots}
 
-    def take(message):
+    def take(message, ns):
         for t in message.transforms:
             p, q = t.transform.translation, t.transform.rotation
-            seen[t.child_frame_id.lstrip("/")] = [t.header.frame_id.lstrip("/"),
-                                                  [p.x, p.y, p.z], [q.x, q.y, q.z, q.w]]
+            seen[ns][t.child_frame_id.lstrip("/")] = [t.header.frame_id.lstrip("/"),
+                                                      [p.x, p.y, p.z], [q.x, q.y, q.z, q.w]]
 
-    rospy.Subscriber("/tf", TFMessage, take)
-    rospy.Subscriber("/tf_static", TFMessage, take)
-    publisher = rospy.Publisher("/joint_states", JointState, queue_size=1)
+    publishers = {}
+    for ns in robots:
+        rospy.Subscriber(f"{ns}/tf", TFMessage, take, callback_args=ns)
+        rospy.Subscriber(f"{ns}/tf_static", TFMessage, take, callback_args=ns)
+        publishers[ns] = rospy.Publisher(f"{ns}/joint_states", JointState, queue_size=1)
+
+    def done() -> bool:
+        return all(len(seen[ns]) >= robot["frames"] for ns, robot in robots.items())
+
     deadline = time.monotonic() + TIMEOUT
-    while len(seen) < frames and time.monotonic() < deadline:
-        state = JointState(name=names, position=positions)
-        state.header.stamp = rospy.Time.now()
-        publisher.publish(state)
+    while not done() and time.monotonic() < deadline:
+        for ns, robot in robots.items():
+            state = JointState(name=robot["names"], position=robot["positions"])
+            state.header.stamp = rospy.Time.now()
+            publishers[ns].publish(state)
         time.sleep(0.05)
     print(json.dumps(seen))
     rospy.signal_shutdown("done")
-    return 0 if len(seen) >= frames else 1
+    return 0 if done() else 1
 
 
 if __name__ == "__main__":
