@@ -47,3 +47,11 @@ def for_window(environ: MutableMapping[str, str] | None = None) -> str:
     environ = os.environ if environ is None else environ
     environ["MUJOCO_GL"] = "glfw"
     return "glfw"
+
+
+def without_drawing(environ: MutableMapping[str, str] | None = None) -> str:
+    """Set `MUJOCO_GL=disable`, for a process that only simulates: MuJoCo then does not
+    load an OpenGL library at import. Call it before `mujoco` is first imported."""
+    environ = os.environ if environ is None else environ
+    environ["MUJOCO_GL"] = "disable"
+    return "disable"

@@ -44,9 +44,10 @@ import threading
 import time
 from pathlib import Path
 
+from .. import gl
+
 if os.environ.get("SW2SIM_VIEW") != "1":
-    # Nothing to draw: MuJoCo then skips loading OpenGL (a third of a second at start).
-    os.environ["MUJOCO_GL"] = "disable"
+    gl.without_drawing()   # nothing to draw: a tenth of a second less at start
 
 import mujoco  # noqa: E402  (after the choice above, which MuJoCo reads once)
 import numpy as np  # noqa: E402

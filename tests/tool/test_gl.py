@@ -1,6 +1,9 @@
 """The OpenGL platform is chosen in sw2sim.gl, and only there."""
 
+import os
 import re
+import subprocess
+import sys
 
 import pytest
 
@@ -56,3 +59,14 @@ def test_no_other_module_sets_mujoco_gl():
     if re.search(r"^\s*export\s+MUJOCO_GL", makefile, re.M):
         offenders.append("Makefile exports MUJOCO_GL")
     assert not offenders, "set MUJOCO_GL through sw2sim.gl only:\n" + "\n".join(offenders)
+
+
+def test_the_ros_simulation_loads_no_opengl_unless_it_shows_a_window():
+    """sw2sim ros's simulation node draws nothing without --view: MuJoCo is imported with
+    drawing turned off (no OpenGL library loaded); with --view it draws in a window."""
+    probe = "import sys, sw2sim.ros.world, os; print(os.environ['MUJOCO_GL'], 'OpenGL' in sys.modules)"
+    for view, expected in (("0", "disable False"), ("1", "osmesa True")):
+        env = {**os.environ, "MUJOCO_GL": "osmesa", "SW2SIM_VIEW": view}
+        done = subprocess.run([sys.executable, "-c", probe], env=env, capture_output=True,
+                              text=True, cwd=ROOT, timeout=60)
+        assert done.stdout.split("\n")[0] == expected, done.stdout + done.stderr
