@@ -7,12 +7,16 @@
 `spawn_model` (gazebo_ros) sends the URDF to /gazebo/spawn_urdf_model and ends;
 `spawner` (controller_manager) loads and starts the controllers in its namespace and stays
 until shut down; `static_transform_publisher` (tf) latches one transform on /tf_static.
+They speak ROS 1 through sw2sim.ros.wire, which starts in a fraction of rospy's time.
 """
 
 from __future__ import annotations
 
 import math
+import struct
 import sys
+
+from . import wire
 
 
 def _value(args: list[str], flag: str, default: str | None = None) -> str | None:
@@ -20,90 +24,84 @@ def _value(args: list[str], flag: str, default: str | None = None) -> str | None
         else default
 
 
+def _srv(package: str, name: str) -> tuple[str, str, str]:
+    return wire.definition(wire.module_of(package, "srv", f"{name}"), name)
+
+
 def spawn_model(args: list[str]) -> int:
-    import rospy
-    from geometry_msgs.msg import Point, Pose, Quaternion
-    from gazebo_msgs.srv import SpawnModel
-    rospy.init_node("spawn_model", anonymous=True, disable_signals=True)
+    node = wire.Node("spawn_model", args)
     if "-file" in args:
         with open(_value(args, "-file"), encoding="utf-8") as stream:
             xml = stream.read()
     elif "-param" in args:
-        xml = rospy.get_param(_value(args, "-param"))
+        xml = node.get_param(_value(args, "-param"))
     else:
-        rospy.logerr("spawn_model: give -file FILE or -param NAME")
+        wire.log("ERROR", "spawn_model: give -file FILE or -param NAME")
         return 1
-    pose = Pose(position=Point(*(float(_value(args, f"-{a}", "0")) for a in "xyz")),
-                orientation=Quaternion(0, 0, 0, 1))
-    rospy.wait_for_service("/gazebo/spawn_urdf_model", timeout=60)
-    answer = rospy.ServiceProxy("/gazebo/spawn_urdf_model", SpawnModel)(
-        model_name=_value(args, "-model", "robot"), model_xml=xml,
-        robot_namespace=_value(args, "-robot_namespace", "") or rospy.get_namespace(),
-        initial_pose=pose, reference_frame=_value(args, "-reference_frame", "world"))
-    (rospy.loginfo if answer.success else rospy.logerr)("spawn_model: %s", answer.status_message)
-    return 0 if answer.success else 1
+    namespace = _value(args, "-robot_namespace", "") or node.namespace.rstrip("/") + "/"
+    position = (float(_value(args, f"-{a}", "0")) for a in "xyz")
+    request = (wire.string(_value(args, "-model", "robot")) + wire.string(xml)
+               + wire.string(namespace) + wire.float64s(*position, 0.0, 0.0, 0.0, 1.0)
+               + wire.string(_value(args, "-reference_frame", "world")))
+    try:
+        success, status = wire.unpack_bool_and_string(
+            node.call("/gazebo/spawn_urdf_model", _srv("gazebo_msgs", "SpawnModel"), request))
+    except wire.RosError as error:
+        success, status = False, str(error)
+    finally:
+        node.close()
+    wire.log("INFO" if success else "ERROR", f"spawn_model: {status}")
+    return 0 if success else 1
 
 
 def spawner(args: list[str]) -> int:
-    import rospy
-    from controller_manager_msgs.srv import LoadController, SwitchController
-    rospy.init_node("spawner", anonymous=True, disable_signals=True)
+    node = wire.Node("spawner", args)
     names, skip = [], False
     for arg in args:
         if skip:
             skip = False
         elif arg in ("--timeout", "--namespace", "--shutdown-timeout"):
             skip = True
-        elif not arg.startswith("-") and not arg.startswith("__"):
+        elif not arg.startswith("-") and ":=" not in arg:
             names.append(arg)
-    base = rospy.resolve_name("controller_manager")
-    rospy.wait_for_service(f"{base}/load_controller", timeout=float(_value(args, "--timeout", "60")))
-    load = rospy.ServiceProxy(f"{base}/load_controller", LoadController)
-    loaded = [n for n in names if load(n).ok]
-    for name in set(names) - set(loaded):
-        rospy.logerr("spawner: controller %s could not be loaded", name)
-    switch = rospy.ServiceProxy(f"{base}/switch_controller", SwitchController)
-    ok = switch(start_controllers=loaded, stop_controllers=[], strictness=2, start_asap=False,
-                timeout=0.0).ok
-    rospy.loginfo("spawner: started %s", ", ".join(loaded) if ok else "nothing")
-    rospy.spin()
+    base = node.resolve("controller_manager")
+    timeout = float(_value(args, "--timeout", "60"))
+    try:
+        load = _srv("controller_manager_msgs", "LoadController")
+        loaded = [n for n in names
+                  if node.call(f"{base}/load_controller", load, wire.string(n), timeout)[0]]
+        for name in names:
+            if name not in loaded:
+                wire.log("ERROR", f"spawner: controller {name} could not be loaded")
+        request = (wire.strings(loaded) + wire.strings([]) + struct.pack("<i", 2)
+                   + struct.pack("<B", 0) + wire.float64s(0.0))
+        ok = node.call(f"{base}/switch_controller",
+                       _srv("controller_manager_msgs", "SwitchController"), request, timeout)[0]
+    except wire.RosError as error:
+        wire.log("ERROR", f"spawner: {error}")
+        node.close()
+        return 1
+    wire.log("INFO", f"spawner: started {', '.join(loaded) if ok else 'nothing'}")
+    node.spin()
     return 0
 
 
 def static_transform_publisher(args: list[str]) -> int:
-    import rospy
-    from geometry_msgs.msg import TransformStamped
-    from tf2_msgs.msg import TFMessage
-    numbers = [a for a in args if not a.startswith("__")]
+    numbers = [a for a in args if ":=" not in a]
     x, y, z, yaw, pitch, roll = (float(v) for v in numbers[:6])
     parent, child = numbers[6], numbers[7]
-    rospy.init_node("static_transform_publisher", anonymous=True, disable_signals=True)
     cy, sy, cp, sp, cr, sr = (math.cos(yaw / 2), math.sin(yaw / 2), math.cos(pitch / 2),
                               math.sin(pitch / 2), math.cos(roll / 2), math.sin(roll / 2))
-    t = TransformStamped()
-    t.header.stamp, t.header.frame_id, t.child_frame_id = rospy.Time(0), parent, child
-    t.transform.translation.x, t.transform.translation.y, t.transform.translation.z = x, y, z
-    r = t.transform.rotation
-    r.w = cr * cp * cy + sr * sp * sy
-    r.x = sr * cp * cy - cr * sp * sy
-    r.y = cr * sp * cy + sr * cp * sy
-    r.z = cr * cp * sy - sr * sp * cy
-    rospy.Publisher("/tf_static", TFMessage, queue_size=1, latch=True).publish(TFMessage([t]))
-    rospy.spin()
+    rotation = (sr * cp * cy - cr * sp * sy, cr * sp * cy + sr * cp * sy,
+                cr * cp * sy - sr * sp * cy, cr * cp * cy + sr * sp * sy)   # x, y, z, w
+    # tf2_msgs/TFMessage with one geometry_msgs/TransformStamped, stamped 0 (static)
+    message = (struct.pack("<I", 1) + struct.pack("<3I", 0, 0, 0) + wire.string(parent)
+               + wire.string(child) + wire.float64s(x, y, z, *rotation))
+    node = wire.Node("static_transform_publisher", args)
+    tf = wire.definition(wire.module_of("tf2_msgs", "msg", "TFMessage"), "TFMessage")
+    node.latch("/tf_static", tf, message)
+    node.spin()
     return 0
-
-
-def _without_clock() -> None:
-    """Keep rospy from following /clock in these nodes: none of them reads the time, and
-    at a high real-time factor the clock's messages would cost them more than their work."""
-    import rospy.impl.simtime
-    import rospy.rostime
-
-    def wall_time() -> bool:
-        rospy.rostime.set_rostime_initialized(True)
-        return True
-
-    rospy.impl.simtime.init_simtime = wall_time
 
 
 NODES = {"spawn_model": spawn_model, "spawner": spawner,
@@ -117,11 +115,13 @@ def main(argv: list[str] | None = None) -> int:
         print(f"usage: python -m sw2sim.ros.nodes {{{','.join(NODES)}}} ...", file=sys.stderr)
         return 2
     messages.ensure()
-    _without_clock()
     try:
         return NODES[argv[0]](argv[1:])
     except KeyboardInterrupt:
         return 0
+    except (wire.RosError, OSError) as error:
+        wire.log("ERROR", f"{argv[0]}: {error}")
+        return 1
 
 
 if __name__ == "__main__":

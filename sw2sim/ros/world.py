@@ -316,12 +316,14 @@ class World:
     # -- publishing ----------------------------------------------------------------------
     def _publish(self, now: float) -> None:
         rospy = self.rospy
-        wall = time.monotonic()
-        if now >= self.next_clock and wall >= self.next_clock_wall:
+        wall, period = time.monotonic(), 1.0 / CLOCK_HZ
+        # On wall time, ticks keep to a schedule of CLOCK_HZ a second, with half a period
+        # of slack: at real time the wall clock's jitter then never holds a tick back.
+        if now >= self.next_clock - 1e-9 and wall + period / 2 >= self.next_clock_wall:
             from rosgraph_msgs.msg import Clock
             self.clock.publish(Clock(clock=rospy.Time.from_sec(now)))
-            self.next_clock = now + 1.0 / CLOCK_HZ
-            self.next_clock_wall = wall + 1.0 / CLOCK_HZ
+            self.next_clock = now + period
+            self.next_clock_wall = max(self.next_clock_wall, wall - period / 2) + period
         for c in list(self.controllers.values()):
             if not c.running or now < c.next_publish:
                 continue

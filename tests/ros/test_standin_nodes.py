@@ -1,0 +1,36 @@
+"""The stand-in's small nodes (sw2sim.ros.nodes) speak ROS 1 without rospy
+(sw2sim.ros.wire): Debian's own rospy tools read what they publish, and a node that cannot
+do its work says why in the launch log's terms."""
+
+from __future__ import annotations
+
+import math
+import sys
+
+import yaml
+
+
+def test_static_transform_publisher_latches_its_transform_for_rospy(ros):
+    ros.start(sys.executable, "-m", "sw2sim.ros.nodes", "static_transform_publisher",
+              "0.1", "0.2", "0.3", "0.5", "0", "0", "base_link", "base_footprint", "40",
+              "__name:=tf_footprint_base", name="static_transform_publisher")
+    done = ros.run("rostopic", "echo", "-n", "1", "/tf_static", timeout=30)
+    assert done.returncode == 0, done.stdout + done.stderr
+    message = yaml.safe_load(done.stdout.split("---")[0])
+    (transform,) = message["transforms"]
+    assert transform["header"]["frame_id"] == "base_link"
+    assert transform["child_frame_id"] == "base_footprint"
+    t, q = transform["transform"]["translation"], transform["transform"]["rotation"]
+    assert (t["x"], t["y"], t["z"]) == (0.1, 0.2, 0.3)
+    # a yaw of 0.5 rad about z
+    assert math.isclose(q["z"], math.sin(0.25)) and math.isclose(q["w"], math.cos(0.25))
+    assert abs(q["x"]) < 1e-12 and abs(q["y"]) < 1e-12
+    listed = ros.run("rosnode", "list", timeout=30)
+    assert "/tf_footprint_base" in listed.stdout.split()
+
+
+def test_spawner_without_a_controller_manager_says_which_service_it_waited_for(ros):
+    done = ros.run(sys.executable, "-m", "sw2sim.ros.nodes", "spawner", "--timeout", "1",
+                   "arm_controller", timeout=30)
+    assert done.returncode == 1
+    assert "[ERROR]" in done.stderr and "/controller_manager/load_controller" in done.stderr
