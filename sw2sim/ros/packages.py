@@ -1,7 +1,7 @@
 """The stand-in ROS packages, written where roslaunch finds them: `gazebo_ros`,
 `controller_manager` and `tf`, with the launch file and node names the exported
-packages' launch files use. Their nodes run sw2sim.ros.world and sw2sim.ros.nodes with
-the Python that runs sw2sim (SW2SIM_PYTHON).
+packages' launch files use. Their nodes run sw2sim.ros.gzserver (the simulation,
+sw2sim.ros.world) and sw2sim.ros.nodes with the Python that runs sw2sim (SW2SIM_PYTHON).
 
 They go on ROS_PACKAGE_PATH after the user's own packages, so a package's gazebo.launch
 runs unchanged.
@@ -41,7 +41,7 @@ EMPTY_WORLD = """<launch>
 
 # package -> {file: (module and node, or None for a data file)}
 NODES = {
-    "gazebo_ros": {"gzserver": "sw2sim.ros.world", "spawn_model": "sw2sim.ros.nodes spawn_model"},
+    "gazebo_ros": {"gzserver": "sw2sim.ros.gzserver", "spawn_model": "sw2sim.ros.nodes spawn_model"},
     "controller_manager": {"spawner": "sw2sim.ros.nodes spawner"},
     "tf": {"static_transform_publisher": "sw2sim.ros.nodes static_transform_publisher"},
 }

@@ -44,15 +44,10 @@ import threading
 import time
 from pathlib import Path
 
-from .. import gl
+import mujoco
+import numpy as np
 
-if os.environ.get("SW2SIM_VIEW") != "1":
-    gl.without_drawing()   # nothing to draw: a tenth of a second less at start
-
-import mujoco  # noqa: E402  (after the choice above, which MuJoCo reads once)
-import numpy as np  # noqa: E402
-
-from . import hardware  # noqa: E402
+from . import hardware
 
 CLOCK_HZ = 100.0          # /clock messages per simulated (and at most per wall) second
 STATE_HZ = 50.0           # controller state messages per simulated second

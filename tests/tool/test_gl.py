@@ -64,7 +64,8 @@ def test_no_other_module_sets_mujoco_gl():
 def test_the_ros_simulation_loads_no_opengl_unless_it_shows_a_window():
     """sw2sim ros's simulation node draws nothing without --view: MuJoCo is imported with
     drawing turned off (no OpenGL library loaded); with --view it draws in a window."""
-    probe = "import sys, sw2sim.ros.world, os; print(os.environ['MUJOCO_GL'], 'OpenGL' in sys.modules)"
+    probe = ("import sys, os, sw2sim.ros.gzserver; "
+             "print(os.environ['MUJOCO_GL'], 'OpenGL' in sys.modules)")
     for view, expected in (("0", "disable False"), ("1", "osmesa True")):
         env = {**os.environ, "MUJOCO_GL": "osmesa", "SW2SIM_VIEW": view}
         done = subprocess.run([sys.executable, "-c", probe], env=env, capture_output=True,
