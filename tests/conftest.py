@@ -26,46 +26,11 @@ def scope_of(nodeid: str) -> str:
     return nodeid if module in SPLIT_MODULES else module
 
 
-# Folders whose tests mostly wait (for ROS processes to start, talk and stop): their units
-# of work are spread among the others, so that a worker waits on them while another
-# computes, rather than both workers waiting on them at the end of the run.
-WAITING_FOLDERS = ("tests/ros/",)
-
-
-def spread(units: dict[str, list], waiting: set[str]) -> list[str]:
-    """The units of work (name -> tests), the others largest first (as xdist would order
-    them), and the `waiting` ones at even intervals among them, the first at the start."""
-    slow = [u for u in units if u in waiting]
-    rest = sorted((u for u in units if u not in waiting), key=lambda u: -len(units[u]))
-    if not slow or not rest:
-        return slow + rest
-    out, step = [], len(rest) / len(slow)
-    for i, unit in enumerate(slow):
-        out.append(unit)
-        out += rest[round(i * step):round((i + 1) * step)]
-    return out
-
-
-def pytest_collection_modifyitems(session, config, items):
-    """The order xdist hands out units of work in is the workers' collection order (a
-    worker does not know the controller's --dist, so this runs always)."""
-    if not items:
-        return
-    by_unit: dict[str, list] = {}
-    for item in items:
-        by_unit.setdefault(scope_of(item.nodeid), []).append(item)
-    waiting = {u for u in by_unit if u.startswith(WAITING_FOLDERS)}
-    items[:] = [item for unit in spread(by_unit, waiting) for item in by_unit[unit]]
-
-
 @pytest.hookimpl(optionalhook=True)
 def pytest_xdist_make_scheduler(config, log):
     if config.getoption("dist") != "loadscope":
         return None
     from xdist.scheduler import LoadScopeScheduling
-    # The order is the collection's (pytest_collection_modifyitems above), not xdist's own
-    # largest-first, which would leave the one-test ROS units for the end.
-    config.option.loadscopereorder = False
 
     class SharedFolderScheduling(LoadScopeScheduling):
         def _split_scope(self, nodeid: str) -> str:
