@@ -25,7 +25,7 @@ def _value(args: list[str], flag: str, default: str | None = None) -> str | None
 
 
 def _srv(package: str, name: str) -> tuple[str, str, str]:
-    return wire.definition(wire.module_of(package, "srv", f"{name}"), name)
+    return wire.definition(wire.module_of(package, "srv", name), name)
 
 
 def spawn_model(args: list[str]) -> int:
@@ -36,6 +36,7 @@ def spawn_model(args: list[str]) -> int:
     elif "-param" in args:
         xml = node.get_param(_value(args, "-param"))
     else:
+        node.close()
         wire.log("ERROR", "spawn_model: give -file FILE or -param NAME")
         return 1
     namespace = _value(args, "-robot_namespace", "") or node.namespace.rstrip("/") + "/"

@@ -106,11 +106,9 @@ def running(pids) -> list[int]:
 
 
 def stop(*processes: subprocess.Popen) -> None:
-    """Stop processes, their groups and everything below them, all at once: SIGINT first
-    (Ctrl-C: each node shuts down as it would in its own terminal), SIGKILL for what is
-    left after STOP_WAIT. roslaunch starts each node in a session of its own and would
-    pass the SIGINT on to them one after another, a tenth of a second or more each; here
-    they all have it at once."""
+    """Stop processes, their groups and everything below them: SIGINT to each group first
+    (as Ctrl-C, which lets roslaunch stop its nodes in order), SIGINT to the nodes it left
+    after STOP_WAIT, SIGKILL for what is left after that."""
     below = [pid for process in processes for pid in descendants(process.pid)]
 
     def alive() -> bool:
@@ -120,14 +118,19 @@ def stop(*processes: subprocess.Popen) -> None:
         for process in processes:
             with _quiet():
                 os.killpg(process.pid, sig)
-        for pid in below:
-            with _quiet():
-                os.kill(pid, sig)
+        if sig == signal.SIGKILL:
+            for pid in below:
+                with _quiet():
+                    os.kill(pid, signal.SIGKILL)
         deadline = time.monotonic() + STOP_WAIT
         while time.monotonic() < deadline and alive():
-            time.sleep(0.02)
+            time.sleep(0.05)
         if not alive():
             break
+        if sig == signal.SIGINT:   # the nodes roslaunch left: Ctrl-C them too
+            for pid in below:
+                with _quiet():
+                    os.kill(pid, signal.SIGINT)
     for process in processes:
         with _quiet():
             process.wait(timeout=STOP_WAIT)
@@ -189,4 +192,6 @@ def run(path: str, launch: str | None = None, duration: float | None = None,
     except KeyboardInterrupt:
         return 130
     finally:
-        stop(*started)
+        # the launch first, then the master its nodes unregister from
+        for process in reversed(started):
+            stop(process)

@@ -136,6 +136,10 @@ class Node:
         self.master = xmlrpc.client.ServerProxy(self.master_uri, allow_none=True)
         self.stopped = threading.Event()
         self.published: dict[str, tuple[str, str, str, bytes]] = {}
+        self.rpc = self.data = None   # the slave API and TCPROS servers, once it publishes
+
+    def _serve(self) -> None:
+        """Start the slave API (XML-RPC) and the TCPROS server a publisher needs."""
         host = _host()
         self.rpc = _Server((host, 0), requestHandler=_Quiet, logRequests=False,
                            allow_none=True)
@@ -201,6 +205,8 @@ class Node:
     # a latched topic
     def latch(self, topic: str, msg: tuple[str, str, str], message: bytes) -> None:
         """Publish one message on `topic`, latched: every subscriber, now or later, gets it."""
+        if self.rpc is None:
+            self._serve()
         topic = self.resolve(topic)
         self.published[topic] = (*msg, message)
         self._ask("registerPublisher", topic, msg[0], self.uri)
@@ -252,8 +258,9 @@ class Node:
                 self._ask("unregisterPublisher", topic, self.uri)
             except (RosError, OSError):
                 pass
-        self.data.close()
-        self.rpc.server_close()
+        if self.rpc is not None:
+            self.data.close()
+            self.rpc.server_close()
 
     # the slave API (what the master, rosnode and subscribers ask of a node)
     def getPid(self, caller):

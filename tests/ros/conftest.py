@@ -26,7 +26,7 @@ MISSING = (None if shutil.which("rosmaster") and importlib.util.find_spec("rospy
            else "ROS 1 is not installed: `make setup` installs it from Debian where the "
                 "distribution ships it (Debian 12 does; Ubuntu 24.04 and Debian 13 do not)")
 ROSOUT = "/usr/lib/rosout/rosout"   # Debian's
-MASTER_TIMEOUT = 15.0   # s for roscore to answer
+MASTER_TIMEOUT = 15.0   # s for rosmaster to answer
 STOP_TIMEOUT = 5.0      # s between SIGINT and SIGKILL
 
 
