@@ -108,11 +108,21 @@ class MissingRos(Exception):
     """Debian's ROS 1 (genpy, the message definitions) is not installed."""
 
 
+# Set by sw2sim.ros.run.environment() for the nodes it starts: the folder the caller
+# generated, so that a node whose HOME differs (a test's, a reader's `sudo`) finds the
+# classes instead of generating them again at every start.
+FOLDER_VARIABLE = "SW2SIM_ROS_MESSAGES"
+
+
 def folder() -> Path:
     """The cache folder of the generated classes, named by the definitions' hash."""
     digest = hashlib.sha256(repr(sorted(DEFINITIONS.items())).encode()).hexdigest()[:12]
+    name = f"ros-messages-{digest}"
+    given = Path(os.environ.get(FOLDER_VARIABLE) or "/nonexistent")
+    if given.name == name and (given / ".done").is_file():
+        return given
     base = Path(os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache")
-    return base / "sw2sim" / f"ros-messages-{digest}"
+    return base / "sw2sim" / name
 
 
 def ensure() -> Path:

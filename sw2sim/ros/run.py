@@ -64,6 +64,7 @@ def environment(package_root: Path, realtime: float) -> dict[str, str]:
     user = env.get("ROS_PACKAGE_PATH") or "/usr/share"
     env["ROS_PACKAGE_PATH"] = os.pathsep.join([str(package_root.parent), user, str(standins)])
     env["PYTHONPATH"] = os.pathsep.join(p for p in [str(generated), env.get("PYTHONPATH")] if p)
+    env[messages.FOLDER_VARIABLE] = str(generated)
     env["SW2SIM_PYTHON"] = sys.executable
     env["SW2SIM_REALTIME"] = f"{realtime:g}"
     env.setdefault("ROS_IP", "127.0.0.1")
