@@ -6,7 +6,8 @@ its code cells are exactly the blocks the tests run, in page order: the text of 
 or of the file an `{% include_code %}` fence shows. The prose between them becomes
 Markdown cells; a block the page marks `data-skip` stays Markdown (shown, not run) with
 its reason. A first code cell moves the kernel to the repository root, where the pages'
-code runs.
+code runs; outside a clone it fetches the files the lesson reads (listed for every
+notebook in notebooks/files.json) from the course site, and installs sw2sim with pip.
 
 Notebooks are written to notebooks/ with their outputs and committed, as the figures
 under media/ are, so that the site (and its Pages build, which has no Python) serves them
@@ -19,6 +20,7 @@ other change runs the notebook again.
 from __future__ import annotations
 
 import ast
+import json
 import re
 import sys
 import tempfile
@@ -44,33 +46,77 @@ KERNEL = {"name": "python3", "display_name": "Python 3", "language": "python"}
 # Libraries whose version can change what a page's code prints, besides the figures' ones.
 KERNEL_LIBRARIES = (*RENDERERS, "ipykernel")
 
-# The first code cell of every notebook. It defines one function and removes it again, so
-# the namespace the page's blocks see is the one the page runner gives them.
-SETUP_CODE = '''\
-def _go_to_repository_root():
-    """The lesson's code uses paths from the repository root (examples/example_1, ...)."""
+# The first code cell of every notebook, with the notebook's name filled in (setup_code).
+# It defines one function and removes it again, so the namespace the page's blocks see is
+# the one the page runner gives them. `site` and `tool` are empty here: the site's build
+# (_plugins/notebooks.rb) fills them in the copies it publishes, with the site's address
+# and a pip requirement for sw2sim from the repository.
+SETUP_TEMPLATE = '''\
+def _set_up_the_lesson(notebook="@NOTEBOOK@", site="", tool=""):
+    """Work where the lesson's files are. In a clone of the course repository that is its
+    root. Anywhere else (an empty folder, Colab) it is the folder this notebook runs in:
+    the files the lesson reads are fetched there from the course site (a file already
+    there is kept), and sw2sim is installed with pip if it is missing."""
+    import importlib
+    import json
     import os
+    import subprocess
     import sys
+    import urllib.request
     from pathlib import Path
 
     here = Path.cwd().resolve()
-    for folder in (here, *here.parents):
-        if (folder / "examples").is_dir() and (folder / "course").is_dir():
-            break
-    else:
-        raise FileNotFoundError(
-            f"No copy of the course repository at or above {here}. Clone the repository, "
-            "save this notebook in its notebooks/ folder and start Jupyter from there.")
-    os.chdir(folder)
-    if str(folder) not in sys.path:
-        sys.path.insert(0, str(folder))  # import sw2sim from this copy, as the pages do
+    clones = [f for f in (here, *here.parents)
+              if (f / "examples").is_dir() and (f / "course").is_dir()]
+    root = clones[0] if clones else here
+    if not clones:
+        site = (os.environ.get("SW2SIM_COURSE_SITE") or site).rstrip("/")
+        if not site:
+            raise RuntimeError(
+                "This notebook is not in a clone of the course repository and does not "
+                "know the course site to fetch its files from. Set SW2SIM_COURSE_SITE to "
+                "the site's address, or clone the repository and open the notebook in its "
+                "notebooks/ folder.")
+        try:
+            with urllib.request.urlopen(f"{site}/notebooks/files.json", timeout=30) as answer:
+                names = json.load(answer)[notebook]   # {file: where the site has it}
+            fetched = 0
+            for name, address in names.items():
+                target = here / name
+                if not target.exists():
+                    target.parent.mkdir(parents=True, exist_ok=True)
+                    with urllib.request.urlopen(f"{site}/{address}", timeout=30) as answer:
+                        target.write_bytes(answer.read())
+                    fetched += 1
+        except (OSError, KeyError, ValueError) as error:
+            raise RuntimeError(f"Could not fetch the lesson's files from {site}: {error}. Check "
+                               "the address and your connection, then run this cell again.") from None
+        print(f"{len(names)} lesson files in {here} ({fetched} fetched from {site})")
+    if str(root) not in sys.path:
+        sys.path.insert(0, str(root))  # import the lesson's modules (and a clone's sw2sim)
+    try:
+        import sw2sim  # noqa: F401  (chooses how MuJoCo draws: off-screen without a screen)
+    except ImportError:
+        if not tool:
+            raise RuntimeError("sw2sim is not installed. In a clone of the course repository "
+                               'run `pip install ".[course]"`, then restart the kernel.') from None
+        print("Installing sw2sim and the lessons' libraries:", tool)
+        subprocess.check_call([sys.executable, "-m", "pip", "install", "--quiet", tool])
+        importlib.invalidate_caches()
+        import sw2sim  # noqa: F401
+    os.chdir(root)
     sys.argv = [""]  # the pages' scripts see an empty command line, as in a Python prompt
-    import sw2sim  # noqa: F401  (chooses how MuJoCo draws: off-screen where there is no screen)
-    print("Running in the repository root:", folder)
+    print("Working in", root)
 
 
-_go_to_repository_root()
-del _go_to_repository_root'''
+_set_up_the_lesson()
+del _set_up_the_lesson'''
+
+
+def setup_code(name: str) -> str:
+    """The first code cell of the notebook called `name`."""
+    return SETUP_TEMPLATE.replace("@NOTEBOOK@", name)
+
 
 # Liquid other than {% raw %} and {% include_code %} is the site's own templating: a
 # notebook cannot evaluate it, so such a region of a page becomes a note.
@@ -112,7 +158,8 @@ def build(path: Path, root: Path = ROOT) -> NotebookNode:
     front = yaml.safe_load("\n".join(front_lines)) or {}
     body = [""] * body_start + lines[body_start:]
 
-    cells = [new_markdown_cell(_introduction(front, page)), new_code_cell(SETUP_CODE)]
+    cells = [new_markdown_cell(_introduction(front, page)),
+             new_code_cell(setup_code(notebook_name(path)))]
     cells[1].metadata["tags"] = ["setup"]
     prose: list[str] = []
     cursor = body_start
@@ -157,11 +204,12 @@ def _introduction(front: dict, page: Page) -> str:
         "these. A block the page shows but cannot run here (it needs ROS, say, or a window) "
         "is shown as text, with the reason.",
         "",
-        "**Where to run it.** The code reads files by their paths from the root of the course "
-        "repository, such as `examples/example_1`. Clone the repository and set it up "
-        "(`make setup` installs the Python environment in `.venv`), keep this notebook in its "
-        "`notebooks/` folder, and open it with Jupyter or VS Code using that environment's "
-        "Python. The first code cell finds the repository root and works from there.",
+        "**Where to run it.** Anywhere with Python 3.10 or newer: Jupyter, VS Code or Colab. "
+        "The code reads the lesson's files by their paths from the root of the course "
+        "repository, such as `examples/example_1`. The first code cell sets that up: in a "
+        "clone of the repository it works from the clone's root; anywhere else it fetches "
+        "the files this lesson reads from the course site into the notebook's folder, and "
+        "installs the `sw2sim` tool with pip if it is missing.",
     ])
 
 
@@ -328,6 +376,64 @@ def _files_read(sources: list[str], root: Path) -> set[Path]:
     return freshness.imported_closure(sorted(modules), leave_out=[media.MODULE]) | data
 
 
+FILES = FOLDER / "files.json"
+
+
+def needed_files(nb: NotebookNode, root: Path = ROOT) -> list[str]:
+    """The repository files a notebook's code reads, as paths from the root: what its
+    setup cell fetches from the site outside a clone. The tool (sw2sim/) is installed with
+    pip instead."""
+    sources = [c.source for c in code_cells(nb)]
+    modules: set[Path] = set()
+    data: set[Path] = set()
+    for source in sources:
+        modules |= freshness.imports_of(source)
+        for node in ast.walk(ast.parse(source)):
+            if isinstance(node, ast.Constant) and isinstance(node.value, str):
+                data.update(_named_files(node.value, root))
+                # a package named on its own, as in Path("examples") / "example_5"
+                if re.fullmatch(r"[\w-]+", node.value) and (root / "examples" / node.value).is_dir():
+                    data.update(freshness.files_in(root / "examples" / node.value))
+    # Code that reads one file of an example package may build the path to another: the
+    # package comes whole.
+    for file in list(data):
+        parts = file.relative_to(root).parts
+        if parts[0] == "examples" and len(parts) > 2:
+            data.update(freshness.files_in(root / "examples" / parts[1]))
+    files = freshness.imported_closure(sorted(modules)) | data   # __init__ files included
+    names = {f.relative_to(root).as_posix() for f in files}
+    return sorted(n for n in names if not n.startswith("sw2sim/"))
+
+
+# Where the site publishes the lesson modules (course/...) notebooks import: under
+# notebooks/, so that the course build itself stays out of the site.
+MODULES_ON_SITE = "notebooks/modules/"
+
+
+def files_manifest(pages: list[Path], root: Path = ROOT) -> dict[str, dict[str, str]]:
+    """notebook name -> {file: its path on the site}, for the files its setup cell fetches
+    (notebooks/files.json). The example packages are on the site at their own paths."""
+    def on_site(name: str) -> str:
+        return name if name.startswith("examples/") else MODULES_ON_SITE + name
+    return {notebook_name(p): {name: on_site(name) for name in needed_files(build(p, root), root)}
+            for p in pages}
+
+
+def write_files_manifest(pages: list[Path]) -> bool:
+    """Write notebooks/files.json; True if it changed."""
+    text = json.dumps(files_manifest(pages), indent=1, sort_keys=True) + "\n"
+    if FILES.is_file() and FILES.read_text(encoding="utf-8") == text:
+        return False
+    FOLDER.mkdir(exist_ok=True)
+    FILES.write_text(text, encoding="utf-8")
+    return True
+
+
+def _manifest_is_current() -> bool:
+    return FILES.is_file() and (json.loads(FILES.read_text(encoding="utf-8"))
+                                == files_manifest(lesson_pages()))
+
+
 def _named_files(text: str, root: Path) -> list[Path]:
     """The repository files a string names, if it is a relative path inside the repository."""
     if not re.fullmatch(r"[\w.-]+(?:/[\w.-]+)+/?|[\w-]+\.\w+", text) or ".." in text:
@@ -335,19 +441,20 @@ def _named_files(text: str, root: Path) -> list[Path]:
     return freshness.files_in(root / text)
 
 
-def execute(nb: NotebookNode, timeout: float) -> NotebookNode:
-    """Run the notebook in a fresh python3 kernel started in notebooks/, as a reader would."""
+def execute(nb: NotebookNode, timeout: float, folder: Path = FOLDER) -> NotebookNode:
+    """Run the notebook in a fresh python3 kernel started in `folder` (notebooks/), as a
+    reader would."""
     # Only needed to run notebooks, not to compare them.
     from traitlets.config import Config
     from nbclient import NotebookClient
 
-    FOLDER.mkdir(exist_ok=True)
+    folder.mkdir(exist_ok=True)
     # A kernel on this machine only: local sockets, one folder of them per kernel, rather
     # than unencrypted TCP.
     with tempfile.TemporaryDirectory(prefix="kernel-") as sockets:
         local = Config(KernelManager={"transport": "ipc", "ip": f"{sockets}/ipc"})
         NotebookClient(nb, kernel_name=KERNEL["name"], timeout=timeout, record_timing=False,
-                       config=local, resources={"metadata": {"path": str(FOLDER)}}).execute()
+                       config=local, resources={"metadata": {"path": str(folder)}}).execute()
     for cell in nb.cells:
         # The setup cell prints this machine's folder: not something to publish.
         if "setup" in cell.metadata.get("tags", []):
@@ -432,7 +539,8 @@ def main(argv: list[str] | None = None) -> int:
         return freshness.report_stale([
             *(f"stale: {notebook_file(p).relative_to(ROOT)} (from {p.relative_to(ROOT)})"
               for p in pages if not is_current(p)),
-            *(f"no page: {f.relative_to(ROOT)}" for f in orphans)])
+            *(f"no page: {f.relative_to(ROOT)}" for f in orphans),
+            *([] if _manifest_is_current() else [f"stale: {FILES.relative_to(ROOT)}"])])
     for f in orphans:
         f.unlink()
         print(f"removed {f.relative_to(ROOT)}: its page has no Python to run any more")
@@ -443,6 +551,8 @@ def main(argv: list[str] | None = None) -> int:
         if status != "up to date":
             name = notebook_file(page).relative_to(ROOT)
             print(f"{status:13} {name} ({seconds:.1f} s)", flush=True)
+    if write_files_manifest(lesson_pages()):
+        print(f"wrote {FILES.relative_to(ROOT)}: the files each notebook fetches outside a clone")
     print("notebooks: " + ", ".join(f"{n} {status}" for status, n in sorted(counts.items())))
     return 0
 

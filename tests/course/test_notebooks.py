@@ -6,6 +6,8 @@ outputs made from that code. Running every notebook again would repeat tests/cou
 so two short pages are run here, in a kernel as a reader would, to prove the notebooks run.
 """
 
+import json
+import os
 import re
 import subprocess
 import sys
@@ -16,7 +18,7 @@ import nbformat
 import pytest
 
 from course import notebooks
-from course.notebooks import FOLDER, SETUP_CODE, build, code_cells, notebook_file
+from course.notebooks import FOLDER, build, code_cells, notebook_file, setup_code
 from course.snippets import find_pages, parse_page
 
 from repository import ROOT
@@ -76,7 +78,8 @@ def test_code_cells_are_the_blocks_the_runner_runs(page):
         assert block.skip in markdown
         assert block.code.strip() not in code
     setup = [c for c in nb.cells if c.cell_type == "code" and c not in cells]
-    assert [c.source for c in setup] == [SETUP_CODE] and nb.cells.index(setup[0]) == 1
+    assert [c.source for c in setup] == [setup_code(notebook_file(page).name)]
+    assert nb.cells.index(setup[0]) == 1
 
 
 @pytest.mark.parametrize("page", PAGES, ids=PAGE_IDS)
@@ -110,9 +113,11 @@ def test_notebook_runs_in_a_kernel_and_shows_what_is_committed(path):
 
 
 def _setup_cell(cwd: Path) -> subprocess.CompletedProcess:
-    code = SETUP_CODE + "\nimport os, sys; print('cwd', os.getcwd()); print('argv', sys.argv)"
+    code = (setup_code("practice-1-03-exported-package.ipynb")
+            + "\nimport os, sys; print('cwd', os.getcwd()); print('argv', sys.argv)")
+    env = {k: v for k, v in os.environ.items() if k != "SW2SIM_COURSE_SITE"}
     return subprocess.run([sys.executable, "-c", code], cwd=cwd, capture_output=True, text=True,
-                          timeout=60)
+                          timeout=60, env=env)
 
 
 def test_setup_cell_moves_to_the_repository_root_from_the_notebooks_folder():
@@ -122,11 +127,29 @@ def test_setup_cell_moves_to_the_repository_root_from_the_notebooks_folder():
     assert "argv ['']" in run.stdout
 
 
-def test_setup_cell_says_what_to_do_outside_the_repository(tmp_path):
+def test_setup_cell_outside_a_clone_without_a_site_says_what_to_do(tmp_path):
+    """The committed notebooks know no site (the site's build fills it in)."""
     run = _setup_cell(tmp_path)
     assert run.returncode != 0
-    assert "FileNotFoundError: No copy of the course repository" in run.stderr
-    assert "notebooks/ folder" in run.stderr
+    assert "RuntimeError: This notebook is not in a clone of the course repository" in run.stderr
+    assert "SW2SIM_COURSE_SITE" in run.stderr and "notebooks/ folder" in run.stderr
+    assert "Traceback" in run.stderr and run.stderr.count("File ") <= 2, "one short traceback"
+    assert not any(tmp_path.iterdir()), "nothing written"
+
+
+def test_the_files_manifest_lists_what_each_notebook_reads():
+    manifest = json.loads(notebooks.FILES.read_text(encoding="utf-8"))
+    assert manifest == notebooks.files_manifest(PAGES, ROOT), REMAKE
+    modelling = manifest["practice-1-01-modelling.ipynb"]
+    assert "course/practices/practice_1/design.py" in modelling and "course/__init__.py" in modelling
+    assert modelling["course/parts.py"] == "notebooks/modules/course/parts.py"
+    package = manifest["practice-1-03-exported-package.ipynb"]
+    assert package["examples/example_1/urdf/example_1.urdf"] == "examples/example_1/urdf/example_1.urdf"
+    assert not [n for files in manifest.values() for n in files if n.startswith("sw2sim/")], \
+        "the tool comes from pip, not from the site"
+    for files in manifest.values():
+        for name in files:
+            assert (ROOT / name).is_file(), name
 
 
 SAMPLE = textwrap.dedent("""\
