@@ -11,7 +11,9 @@ would make it again: they do only when the manifest cannot vouch for the committ
 fresh process, as a user types it: `check` on every example package and on one whose two
 moving links carry 100,000 triangles each, `convert`, `render`), `runner` (every lesson page through the
 page runner, its processes plain and then forked from the fork server, side by side with
-`jupyter nbconvert --execute` over the same pages' notebooks; not in the default set).
+`jupyter nbconvert --execute` over the same pages' notebooks; not in the default set), `ros`
+(the whole test suite as `make test` runs it, with and without tests/ros, in pairs: what
+the ROS tests add; not in the default set, it takes some ten minutes).
 
 Figures, not assertions: compare them before and after a change (2-core machines are the
 target). Each line shows CPU seconds as well as wall-clock seconds: on a busy machine the
@@ -120,13 +122,37 @@ def figures() -> None:
 
 def tests() -> None:
     section = Section("test files (each in a pytest of its own)")
-    for path in sorted((ROOT / "tests").glob("test_*.py")):
+    for path in sorted((ROOT / "tests").rglob("test_*.py")):
         command = [sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider", str(path)]
         done = section.timed(str(path.relative_to(ROOT)), subprocess.run, command, cwd=ROOT,
                              capture_output=True, text=True)
         if done.returncode != 0:
             print(f"   exit status {done.returncode}")
     section.total()
+
+
+ROS_ROUNDS = 2   # pairs of whole runs: the figure varies by several seconds from run to run
+
+
+def ros() -> None:
+    """What the ROS tests add to `make test`: the whole suite as `make test` runs it (two
+    workers on two cores), with and without tests/ros, in alternating pairs."""
+    section = Section("the ROS tests' share of `make test` (pytest -n 2 --dist loadscope)")
+    command = [sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider", "-n", "2",
+               "--dist", "loadscope"]
+    added = []
+    for round_ in range(1, ROS_ROUNDS + 1):
+        walls = {}
+        for label, extra in (("without tests/ros", ["--ignore=tests/ros"]), ("with tests/ros", [])):
+            start = time.perf_counter()
+            done = section.timed(f"round {round_}: {label}", subprocess.run, [*command, *extra],
+                                 cwd=ROOT, capture_output=True, text=True)
+            walls[label] = time.perf_counter() - start
+            if done.returncode != 0:
+                print(f"   exit status {done.returncode}: {done.stdout.strip().splitlines()[-1:]}")
+        added.append(walls["with tests/ros"] - walls["without tests/ros"])
+        print(f"{f'round {round_}: added by tests/ros':60} {'':9} {added[-1]:7.2f} s", flush=True)
+    print(f"{'added by tests/ros, mean of the rounds':60} {'':9} {sum(added) / len(added):7.2f} s\n")
 
 
 def _sw2sim(*args: str) -> subprocess.CompletedProcess:
@@ -248,7 +274,7 @@ def runner() -> None:
 
 
 SECTIONS = {"commands": commands, "models": models, "drawings": drawings, "pages": pages, "figures": figures,
-            "tests": tests, "runner": runner}
+            "tests": tests, "runner": runner, "ros": ros}
 
 
 def main(argv: list[str]) -> int:
