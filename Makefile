@@ -110,7 +110,8 @@ $(STAMPS)/npm: package.json package-lock.json
 	@mkdir -p $(STAMPS) && touch $@
 
 # Front-end files the pages load, copied from node_modules (no CDN at run time).
-assets/vendor/.done: $(STAMPS)/npm tools/copy-vendor.sh
+assets/vendor/.done: $(STAMPS)/npm tools/copy-vendor.sh tools/bundle-model-viewer.mjs \
+                     tools/model-viewer-libraries.mjs tools/no-collada-loader.mjs
 	bash tools/copy-vendor.sh
 	@touch $@
 

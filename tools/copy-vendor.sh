@@ -34,30 +34,21 @@ fi
 mkdir -p "$out/lunr"
 cp node_modules/lunr/lunr.min.js node_modules/lunr/LICENSE "$out/lunr/"
 
-# The 3D model viewer (assets/js/model-viewer.js): three's ES module build, the orbit
-# controls, and urdf-loader with every three loader it imports (it imports the Collada
-# loader even for STL meshes), laid out as in node_modules so relative imports resolve.
-three=node_modules/three
-urdf=node_modules/urdf-loader
-for file in "$three/build/three.module.js" "$urdf/src/URDFLoader.js"; do
+# The 3D model viewer (assets/js/model-viewer.js): one minified module holding the parts
+# of three, its orbit controls and urdf-loader the viewer uses, with the STL loader and
+# without the Collada loader (tools/bundle-model-viewer.mjs, with esbuild), and their
+# licences (urdf-loader's npm package ships no LICENSE file: its README carries the notice).
+for file in node_modules/three/build/three.module.js node_modules/urdf-loader/src/URDFLoader.js \
+        node_modules/esbuild/package.json; do
     if [ ! -f "$file" ]; then
         echo "copy-vendor: $file not found: run 'make setup' (it runs npm ci) first." >&2
         exit 1
     fi
 done
-jsm=examples/jsm
-mkdir -p "$out/three/build" "$out/three/$jsm/controls" "$out/three/$jsm/loaders/collada" \
-    "$out/urdf-loader/src"
-# three.module.js imports everything from three.core.js beside it.
-cp "$three/build/three.module.js" "$three/build/three.core.js" "$out/three/build/"
-cp "$three/$jsm/controls/OrbitControls.js" "$out/three/$jsm/controls/"
-cp "$three/$jsm/loaders/STLLoader.js" "$three/$jsm/loaders/ColladaLoader.js" \
-    "$three/$jsm/loaders/TGALoader.js" "$out/three/$jsm/loaders/"
-cp "$three/$jsm/loaders/collada/"*.js "$out/three/$jsm/loaders/collada/"
-cp "$three/LICENSE" "$out/three/"
-cp "$urdf"/src/*.js "$out/urdf-loader/src/"
-# The npm package ships no LICENSE file; its README carries the Apache-2.0 notice.
-cp "$urdf/README.md" "$urdf/package.json" "$out/urdf-loader/"
+mkdir -p "$out/model-viewer"
+node tools/bundle-model-viewer.mjs "$out/model-viewer/libraries.min.js"
+cp node_modules/three/LICENSE "$out/model-viewer/LICENSE-three"
+cp node_modules/urdf-loader/README.md "$out/model-viewer/README-urdf-loader.md"
 
 version() { node -p "require('./node_modules/$1/package.json').version" 2>/dev/null || echo '?'; }
-echo "copy-vendor: three $(version three), urdf-loader $(version urdf-loader) -> $out"
+echo "copy-vendor: three $(version three), urdf-loader $(version urdf-loader) -> $out/model-viewer"

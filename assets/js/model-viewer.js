@@ -1,8 +1,8 @@
 // The 3D model viewer of the practice pages (_includes/model-viewer.html): a practice's
 // exported package, URDF and STL meshes, drawn with three and urdf-loader, with a slider
-// per movable joint. The page loads only this file; three and urdf-loader (about 470 kB
-// compressed) are imported when the reader asks for the 3D view, so that pages stay
-// light. Where the browser cannot draw 3D (no WebGL 2, which three needs) or the model
+// per movable joint. The page loads only this file; three and urdf-loader (one minified
+// module of about 150 kB compressed, tools/bundle-model-viewer.mjs) are imported when the
+// reader asks for the 3D view, so that pages stay light. Where the browser cannot draw 3D (no WebGL 2, which three needs) or the model
 // fails to load, the viewer shows the still picture of the model instead.
 
 const DEGREE = Math.PI / 180;
@@ -229,11 +229,9 @@ async function openViewer(viewer) {
   }
   setStatus(viewer, "loading", "Loading the model\u2026");
   try {
-    const [THREE, { OrbitControls }, { default: URDFLoader }] = await Promise.all([
-      import("three"),
-      import("three/examples/jsm/controls/OrbitControls.js"),
-      import("urdf-loader"),
-    ]);
+    // The bundle exports the classes of three the viewer uses, under their own names.
+    const THREE = await import(viewer.dataset.libraries);
+    const { OrbitControls, URDFLoader } = THREE;
     const robot = await loadRobot(THREE, URDFLoader, viewer);
     part(viewer, "start").hidden = true;
     part(viewer, "view").hidden = false;

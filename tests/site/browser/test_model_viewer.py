@@ -6,6 +6,7 @@ Headless Chromium has no GPU here; it draws WebGL 2 with SwiftShader, its softwa
 renderer, with the session's usual flags.
 """
 
+import gzip
 import io
 import math
 import re
@@ -24,7 +25,6 @@ PRACTICES = practice_numbers()
 MOVABLE = ("revolute", "continuous", "prismatic")
 VIEWER = re.compile(r'<section class="model-viewer"[^>]*?data-package="(example_\d+)"'
                     r'[^>]*?data-package-url="([^"]+)"[^>]*?data-urdf="([^"]+)"')
-IMPORT_TARGET = re.compile(r'"(/assets/vendor/[^"]+)"')
 READY_S = 20.0
 # The viewer's background and grid are neutral greys (equal channels); the exporter's part
 # colours are not. A pixel whose channels spread at least this far apart is the model.
@@ -108,27 +108,30 @@ def test_each_practice_has_one_viewer_of_its_own_package(site):
                 f"{path}: {mesh.get('filename')} is not published under {package_url}")
 
 
-def test_every_import_the_viewer_needs_is_published(site):
+# The viewer's libraries, bundled by tools/bundle-model-viewer.mjs. Before the bundle the
+# viewer loaded 10 modules of three and urdf-loader: 2.35 MB, 467 kB gzipped.
+LIBRARIES = "/assets/vendor/model-viewer/libraries.min.js"
+MAX_GZIPPED = 200_000   # bytes; the bundle is about 150 kB
+
+
+def test_the_viewer_loads_one_small_minified_bundle(site):
     [(path, *_)] = viewer_pages(site)[1]
     html = (site.root / path.strip("/") / "index.html").read_text(encoding="utf-8")
-    importmap = html.split('<script type="importmap">', 1)[1].split("</script>", 1)[0]
-    targets = IMPORT_TARGET.findall(importmap)
-    assert len(targets) == 3, importmap
-    for target in targets:
-        assert (site.root / target.lstrip("/")).exists(), f"import map names missing {target}"
-    # Every module three, urdf-loader and the orbit controls import, relative or bare.
-    vendor = site.root / "assets/vendor"
-    for module in [*vendor.joinpath("three").rglob("*.js"),
-                   *vendor.joinpath("urdf-loader/src").glob("*.js")]:
-        for name in re.findall(r"^\s*(?:import|export)\b[^;]*?from\s+'([^']+)'",
-                               module.read_text(encoding="utf-8"), flags=re.M):
-            if name == "three":
-                resolved = vendor / "three/build/three.module.js"
-            elif name.startswith("three/"):
-                resolved = vendor / name
-            else:
-                resolved = (module.parent / name).resolve()
-            assert resolved.is_file(), f"{module.relative_to(site.root)} imports missing {name}"
+    assert f'data-libraries="{LIBRARIES}"' in html
+    assert "importmap" not in html
+    bundle = (site.root / LIBRARIES.lstrip("/")).read_bytes()
+    text = bundle.decode("utf-8")
+    assert len(gzip.compress(bundle, 9)) < MAX_GZIPPED
+    assert not re.search(r"^\s*import\b|\bimport\s*\(|from\s*[\"']", text, re.M), \
+        "the bundle imports nothing more"
+    assert "@param" not in text and "* Constructs a new" not in text, "minified: no doc comments"
+    for name in ("OrbitControls", "URDFLoader", "WebGLRenderer", "LoadingManager"):
+        assert re.search(rf"\bas {name}\b", text), f"the bundle does not export {name}"
+    assert "STLLoader" in text or "solid" in text, "the STL loader is in"
+    assert "library_visual_scenes" not in text, "the Collada parser is left out"
+    assert "Copyright 2010-" in text, "three's licence notice is kept"
+    notices = site.root / "assets/vendor/model-viewer"
+    assert (notices / "LICENSE-three").is_file() and (notices / "README-urdf-loader.md").is_file()
 
 
 def test_the_first_load_leaves_three_for_later(site, browser_page):
@@ -225,4 +228,4 @@ def test_without_webgl_the_still_picture_is_shown(site, browser_page):
     assert still.evaluate("img => img.naturalWidth") > 0
     assert "WebGL" in page.locator(".model-viewer-note").text_content()
     assert page.locator(".model-viewer canvas").count() == 0
-    assert not [r.url for r in visit.responses if "/assets/vendor/three/" in r.url]
+    assert not [r.url for r in visit.responses if "/assets/vendor/model-viewer/" in r.url]
