@@ -51,9 +51,13 @@ def run_bundled(command: list[str], cwd: Path = ROOT) -> subprocess.CompletedPro
     return subprocess.run(command, cwd=cwd, env=bundle_env(), capture_output=True, text=True, timeout=600)
 
 
-def jekyll_build(source: Path, destination: Path) -> subprocess.CompletedProcess:
+def jekyll_build(source: Path, destination: Path, config: Path | None = None) -> subprocess.CompletedProcess:
+    """Build `source` into `destination`; `config`, a YAML file read after the site's own
+    _config.yml, overrides its keys (as the Pages workflow sets url and repository)."""
+    configs = ["--config", f"{source / '_config.yml'},{config}"] if config else []
     return run_bundled(["bundle", "exec", "jekyll", "build", "--source", str(source),
-                 "--destination", str(destination), "--disable-disk-cache"], cwd=source)
+                        "--destination", str(destination), "--disable-disk-cache", *configs],
+                       cwd=source)
 
 
 def build_log(result: subprocess.CompletedProcess) -> str:

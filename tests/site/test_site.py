@@ -301,6 +301,9 @@ def test_math_is_typeset_when_the_site_is_built(site, sources):
         if '<span class="katex">' not in html:
             problems.append(f"{path}: has $$...$$ but its page has no .katex element")
     assert with_math, "no page has math: the check above proves nothing"
+    # Nothing to switch on: a page's formulas are typeset wherever they are.
+    problems += [f"{path}: `math:` in its front matter does nothing; remove it"
+                 for path, front in sources["pages"].items() if front and "math" in front]
     assert not problems, "\n".join(problems)
 
 
@@ -423,8 +426,25 @@ def demo(bundle, tmp_path_factory) -> tuple[Path, Path]:
         "media/figure.png": "not really a PNG",
     })
     destination = tmp_path_factory.mktemp("demo-site")
-    assert_clean_build(jekyll_build(source, destination), "the demo site")
+    # Built as the Pages workflow builds the site: with its address.
+    pages = source / "_config.pages.yml"
+    pages.write_text(f'url: "{DEMO_URL}"\n', encoding="utf-8")
+    assert_clean_build(jekyll_build(source, destination, pages), "the demo site")
     return source, destination
+
+
+DEMO_URL = "https://someone.example.org"
+
+
+def test_with_its_address_set_the_site_gives_absolute_urls(demo):
+    """Search engines take only absolute addresses: in the sitemap, in robots.txt and in
+    each page's canonical link."""
+    sitemap = (demo[1] / "sitemap.xml").read_text(encoding="utf-8")
+    locations = re.findall(r"<loc>([^<]+)</loc>", sitemap)
+    assert f"{DEMO_URL}/demo/" in locations
+    assert all(loc.startswith(DEMO_URL + "/") for loc in locations), locations
+    assert f"Sitemap: {DEMO_URL}/sitemap.xml" in (demo[1] / "robots.txt").read_text(encoding="utf-8")
+    assert f'<link rel="canonical" href="{DEMO_URL}/demo/" />' in _demo_page(demo)
 
 
 def _demo_page(demo) -> str:
