@@ -14,7 +14,8 @@ require "json"
 #   a pip requirement for sw2sim from the repository's archive, when the build knows them
 #   (the Pages workflow sets url, repository and repository_branch).
 # - Images the Markdown shows from ../media/ are embedded as cell attachments, so that they
-#   show in Jupyter, VS Code or Colab wherever the file is opened, online or not.
+#   show in Jupyter, VS Code or Colab wherever the file is opened, online or not; other
+#   links to the repository's files (a drawing's whole sheet) point at the site.
 module Sw2simSite
   module Notebooks
     MANIFEST = "notebooks/files.json"
@@ -24,6 +25,7 @@ module Sw2simSite
     # ![alt](../media/x.png) and src="../media/x.png"
     MARKDOWN_IMAGE = %r{(!\[[^\]]*\]\()\.\./(media/[^)\s]+)(\))}
     HTML_IMAGE = %r{(<img\b[^>]*\bsrc=")\.\./(media/[^"]+)(")}
+    RELATIVE_LINK = %r{\]\(\.\./([^)\s]+)\)}
 
     module_function
 
@@ -53,6 +55,7 @@ module Sw2simSite
           set_source(cell, fill_setup(source_of(cell), site, tool))
         elsif cell["cell_type"] == "markdown"
           embed_images(cell, media)
+          absolute_links(cell, site) unless site.empty?
         end
       end
       JSON.pretty_generate(notebook, indent: " ") + "\n"
@@ -80,6 +83,11 @@ module Sw2simSite
       text = text.gsub(HTML_IMAGE) { embed.call(Regexp.last_match(1), Regexp.last_match(2), Regexp.last_match(3)) }
       set_source(cell, text)
       cell["attachments"] = attachments unless attachments.empty?
+    end
+
+    # Links to the repository's files (../media/x-sheet.svg) point at the site instead.
+    def absolute_links(cell, site)
+      set_source(cell, source_of(cell).gsub(RELATIVE_LINK) { "](#{site}/#{Regexp.last_match(1)})" })
     end
 
     def source_of(cell)

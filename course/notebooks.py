@@ -36,6 +36,7 @@ from nbformat.v4 import new_code_cell, new_markdown_cell, new_notebook
 from . import freshness, media
 from .freshness import Fingerprint
 from .media import RENDERERS
+from .notebook_setup import named_files, needed_files, on_site, setup_code
 from .practices import ROOT
 from .snippets import Block, Page, find_pages, parse_page
 from .snippets.parse import (INCLUDE_CODE, include_code_arguments, split_front_matter,
@@ -45,78 +46,6 @@ FOLDER = ROOT / "notebooks"
 KERNEL = {"name": "python3", "display_name": "Python 3", "language": "python"}
 # Libraries whose version can change what a page's code prints, besides the figures' ones.
 KERNEL_LIBRARIES = (*RENDERERS, "ipykernel")
-
-# The first code cell of every notebook, with the notebook's name filled in (setup_code).
-# It defines one function and removes it again, so the namespace the page's blocks see is
-# the one the page runner gives them. `site` and `tool` are empty here: the site's build
-# (_plugins/notebooks.rb) fills them in the copies it publishes, with the site's address
-# and a pip requirement for sw2sim from the repository.
-SETUP_TEMPLATE = '''\
-def _set_up_the_lesson(notebook="@NOTEBOOK@", site="", tool=""):
-    """Work where the lesson's files are. In a clone of the course repository that is its
-    root. Anywhere else (an empty folder, Colab) it is the folder this notebook runs in:
-    the files the lesson reads are fetched there from the course site (a file already
-    there is kept), and sw2sim is installed with pip if it is missing."""
-    import importlib
-    import json
-    import os
-    import subprocess
-    import sys
-    import urllib.request
-    from pathlib import Path
-
-    here = Path.cwd().resolve()
-    clones = [f for f in (here, *here.parents)
-              if (f / "examples").is_dir() and (f / "course").is_dir()]
-    root = clones[0] if clones else here
-    if not clones:
-        site = (os.environ.get("SW2SIM_COURSE_SITE") or site).rstrip("/")
-        if not site:
-            raise RuntimeError(
-                "This notebook is not in a clone of the course repository and does not "
-                "know the course site to fetch its files from. Set SW2SIM_COURSE_SITE to "
-                "the site's address, or clone the repository and open the notebook in its "
-                "notebooks/ folder.")
-        try:
-            with urllib.request.urlopen(f"{site}/notebooks/files.json", timeout=30) as answer:
-                names = json.load(answer)[notebook]   # {file: where the site has it}
-            fetched = 0
-            for name, address in names.items():
-                target = here / name
-                if not target.exists():
-                    target.parent.mkdir(parents=True, exist_ok=True)
-                    with urllib.request.urlopen(f"{site}/{address}", timeout=30) as answer:
-                        target.write_bytes(answer.read())
-                    fetched += 1
-        except (OSError, KeyError, ValueError) as error:
-            raise RuntimeError(f"Could not fetch the lesson's files from {site}: {error}. Check "
-                               "the address and your connection, then run this cell again.") from None
-        print(f"{len(names)} lesson files in {here} ({fetched} fetched from {site})")
-    if str(root) not in sys.path:
-        sys.path.insert(0, str(root))  # import the lesson's modules (and a clone's sw2sim)
-    try:
-        import sw2sim  # noqa: F401  (chooses how MuJoCo draws: off-screen without a screen)
-    except ImportError:
-        if not tool:
-            raise RuntimeError("sw2sim is not installed. In a clone of the course repository "
-                               'run `pip install ".[course]"`, then restart the kernel.') from None
-        print("Installing sw2sim and the lessons' libraries:", tool)
-        subprocess.check_call([sys.executable, "-m", "pip", "install", "--quiet", tool])
-        importlib.invalidate_caches()
-        import sw2sim  # noqa: F401
-    os.chdir(root)
-    sys.argv = [""]  # the pages' scripts see an empty command line, as in a Python prompt
-    print("Working in", root)
-
-
-_set_up_the_lesson()
-del _set_up_the_lesson'''
-
-
-def setup_code(name: str) -> str:
-    """The first code cell of the notebook called `name`."""
-    return SETUP_TEMPLATE.replace("@NOTEBOOK@", name)
-
 
 # Liquid other than {% raw %} and {% include_code %} is the site's own templating: a
 # notebook cannot evaluate it, so such a region of a page becomes a note.
@@ -371,7 +300,7 @@ def _files_read(sources: list[str], root: Path) -> set[Path]:
         modules |= freshness.imports_of(source)
         for node in ast.walk(ast.parse(source)):
             if isinstance(node, ast.Constant) and isinstance(node.value, str):
-                data.update(_named_files(node.value, root))
+                data.update(named_files(node.value, root))
     # course/media.py is the build's own, as for the figures (their modules import it too).
     return freshness.imported_closure(sorted(modules), leave_out=[media.MODULE]) | data
 
@@ -379,44 +308,12 @@ def _files_read(sources: list[str], root: Path) -> set[Path]:
 FILES = FOLDER / "files.json"
 
 
-def needed_files(nb: NotebookNode, root: Path = ROOT) -> list[str]:
-    """The repository files a notebook's code reads, as paths from the root: what its
-    setup cell fetches from the site outside a clone. The tool (sw2sim/) is installed with
-    pip instead."""
-    sources = [c.source for c in code_cells(nb)]
-    modules: set[Path] = set()
-    data: set[Path] = set()
-    for source in sources:
-        modules |= freshness.imports_of(source)
-        for node in ast.walk(ast.parse(source)):
-            if isinstance(node, ast.Constant) and isinstance(node.value, str):
-                data.update(_named_files(node.value, root))
-                # a package named on its own, as in Path("examples") / "example_5"
-                if re.fullmatch(r"[\w-]+", node.value) and (root / "examples" / node.value).is_dir():
-                    data.update(freshness.files_in(root / "examples" / node.value))
-    # Code that reads one file of an example package may build the path to another: the
-    # package comes whole.
-    for file in list(data):
-        parts = file.relative_to(root).parts
-        if parts[0] == "examples" and len(parts) > 2:
-            data.update(freshness.files_in(root / "examples" / parts[1]))
-    files = freshness.imported_closure(sorted(modules)) | data   # __init__ files included
-    names = {f.relative_to(root).as_posix() for f in files}
-    return sorted(n for n in names if not n.startswith("sw2sim/"))
-
-
-# Where the site publishes the lesson modules (course/...) notebooks import: under
-# notebooks/, so that the course build itself stays out of the site.
-MODULES_ON_SITE = "notebooks/modules/"
-
-
 def files_manifest(pages: list[Path], root: Path = ROOT) -> dict[str, dict[str, str]]:
     """notebook name -> {file: its path on the site}, for the files its setup cell fetches
     (notebooks/files.json). The example packages are on the site at their own paths."""
-    def on_site(name: str) -> str:
-        return name if name.startswith("examples/") else MODULES_ON_SITE + name
-    return {notebook_name(p): {name: on_site(name) for name in needed_files(build(p, root), root)}
-            for p in pages}
+    def fetched(page: Path) -> list[str]:
+        return needed_files([c.source for c in code_cells(build(page, root))], root)
+    return {notebook_name(p): {name: on_site(name) for name in fetched(p)} for p in pages}
 
 
 def write_files_manifest(pages: list[Path]) -> bool:
@@ -432,13 +329,6 @@ def write_files_manifest(pages: list[Path]) -> bool:
 def _manifest_is_current() -> bool:
     return FILES.is_file() and (json.loads(FILES.read_text(encoding="utf-8"))
                                 == files_manifest(lesson_pages()))
-
-
-def _named_files(text: str, root: Path) -> list[Path]:
-    """The repository files a string names, if it is a relative path inside the repository."""
-    if not re.fullmatch(r"[\w.-]+(?:/[\w.-]+)+/?|[\w-]+\.\w+", text) or ".." in text:
-        return []
-    return freshness.files_in(root / text)
 
 
 def execute(nb: NotebookNode, timeout: float, folder: Path = FOLDER) -> NotebookNode:

@@ -21,7 +21,7 @@ from ..parts import Part
 from .projection import VIEWS, Projector, trace_view, view_prims
 from .sheet import SCALES, TITLE_BLOCK, VIEW_GAP, boxes_fit, fit, frame, title_block, view_label
 from .solids import Solid
-from .svg import Circle, Fill, Line, Poly, Text, bbox, document, moved, text_width
+from .svg import Circle, Fill, Line, Poly, Text, bbox, document, moved, text_width, views_box
 
 # --- the assembly drawing ------------------------------------------------------------------------
 
@@ -344,9 +344,29 @@ def _parts_list(items: list[_Item]) -> tuple[list, float]:
     return out, height
 
 
-def assembly_drawing_svg(robot) -> str:
+def assembly_drawing_svg(robot, views_only: bool = False) -> str:
     """The robot's assembly drawing: front and top views with balloons, the joints' origins and
-    axes, a parts list and the title block."""
+    axes, a parts list and the title block. `views_only`: the views with their balloons and
+    joint marks alone, cropped close, and under them a key to the balloons (what a page
+    shows, so that the lettering is large enough at the page's width)."""
+    layers, items = _assembly_layers(robot)
+    title = f"{robot.name} ({robot.name}.SLDASM)"
+    if not views_only:
+        return document(layers, title)
+    views = [(name, prims) for name, prims in layers if name != "sheet"]
+    x0, _, x1, y1 = bbox([p for _, prims in views for p in prims])
+    key = [Text(x0, y1 + 6.0 + i * 1.4 * KEY_TEXT,
+                f"{item.number}  {item.part.title or item.part.name} ({item.part.name}.SLDPRT)"
+                f" × {len(item.links)}", KEY_TEXT, "start") for i, item in enumerate(items)]
+    views.append(("key", key))
+    return document(views, title, views_box(views))
+
+
+KEY_TEXT = 4.1  # mm: the key to the balloons under the views, as large as the joints' names
+
+
+def _assembly_layers(robot) -> tuple[list, list]:
+    """The sheet's layers and the parts list's items."""
     items = _items(robot)
     if not items:
         raise ValueError(f"robot {robot.name!r} has no link with a part to draw")
@@ -401,4 +421,4 @@ def assembly_drawing_svg(robot) -> str:
     mass = sum(lk.part.mass for item in items for lk in item.links)
     block = title_block(robot.name, f"{robot.name}.SLDASM", "See parts list", "–", f"{mass:.3f} kg", label)
     layers.append(("sheet", frame() + plist + block))
-    return document(layers, f"{robot.name} ({robot.name}.SLDASM)")
+    return layers, items

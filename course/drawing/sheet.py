@@ -15,7 +15,8 @@ from ..parts import Part
 from .dimensions import check_dimensions, view_dimensions
 from .projection import CENTRE_EXT, VIEWS, Projector, ViewLines, trace_view, view_prims
 from .solids import Solid, shape_corners
-from .svg import SHEET_H, SHEET_W, Circle, Line, Poly, Text, bbox, document, fmt, moved, text_width
+from .svg import (SHEET_H, SHEET_W, Circle, Line, Poly, Text, bbox, document, fmt, moved, text_width,
+                  views_box)
 
 FRAME = (20.0, 10.0, 287.0, 200.0)  # ISO 5457: 20 mm filing margin on the left, 10 mm elsewhere
 TITLE_W, TITLE_H = 180.0, 28.0
@@ -178,12 +179,21 @@ class PartSheet:
     dimensions: list
 
     def svg(self) -> str:
+        """The whole A4 sheet: frame and title block included."""
         return document(self.layers, self.title)
 
+    def views_svg(self) -> str:
+        """Only the views with their dimensions, cropped close: what a page shows, so that
+        the lettering is large enough at the page's width (the sheet is linked beside it)."""
+        views = [(name, prims) for name, prims in self.layers if name != "sheet"]
+        return document(views, self.title, views_box(views))
 
-def part_drawing_svg(part: Part) -> str:
-    """The part's drawing: three first-angle views with dimensions, frame and title block."""
-    return part_sheet(part).svg()
+
+def part_drawing_svg(part: Part, views_only: bool = False) -> str:
+    """The part's drawing: three first-angle views with dimensions, frame and title block
+    (or, `views_only`, the views and their dimensions alone)."""
+    sheet = part_sheet(part)
+    return sheet.views_svg() if views_only else sheet.svg()
 
 
 def part_sheet(part: Part) -> PartSheet:

@@ -279,15 +279,28 @@ def _layer_svg(prims, name: str = "") -> list[str]:
     return out
 
 
-def document(layers: list[tuple[str, list]], title: str) -> str:
+def document(layers: list[tuple[str, list]], title: str, box=None) -> str:
+    """The SVG of the layers: the whole sheet, or only `box` (x0, y0, x1, y1 in sheet mm)."""
+    x0, y0, x1, y1 = box or (0.0, 0.0, SHEET_W, SHEET_H)
+    w, h = x1 - x0, y1 - y0
     lines = [
         '<?xml version="1.0" encoding="UTF-8" standalone="no"?>',
-        f'<svg xmlns="http://www.w3.org/2000/svg" version="1.1" width="{fmt(SHEET_W)}mm" '
-        f'height="{fmt(SHEET_H)}mm" viewBox="0 0 {fmt(SHEET_W)} {fmt(SHEET_H)}">',
+        f'<svg xmlns="http://www.w3.org/2000/svg" version="1.1" width="{fmt(w)}mm" '
+        f'height="{fmt(h)}mm" viewBox="{fmt(x0)} {fmt(y0)} {fmt(w)} {fmt(h)}">',
         f"<title>{_esc(title)}</title>",
-        f'<rect x="0" y="0" width="{fmt(SHEET_W)}" height="{fmt(SHEET_H)}" fill="#fff"/>',
+        f'<rect x="{fmt(x0)}" y="{fmt(y0)}" width="{fmt(w)}" height="{fmt(h)}" fill="#fff"/>',
     ]
     for name, prims in layers:
         lines.extend(_layer_svg(prims, name))
     lines.append("</svg>")
     return "\n".join(lines) + "\n"
+
+
+VIEWS_MARGIN = 4.0  # mm of white around the views when a drawing shows only them
+
+
+def views_box(layers: list[tuple[str, list]], margin: float = VIEWS_MARGIN):
+    """The box (whole mm) around the layers' primitives, with `margin` all round."""
+    x0, y0, x1, y1 = bbox([p for _, prims in layers for p in prims])
+    return (float(np.floor(x0 - margin)), float(np.floor(y0 - margin)),
+            float(np.ceil(x1 + margin)), float(np.ceil(y1 + margin)))

@@ -39,19 +39,30 @@ def holed_wheel(material: Material, diameter: float, width: float, bore: float, 
     )
 
 
-def part_drawing(part_factory):
-    """A figure maker: the drawing sheet of the part that `part_factory()` returns."""
+def part_drawing(part_factory, views_only: bool = False):
+    """A figure maker: the drawing sheet of the part that `part_factory()` returns, or only
+    its views (what the pages show; the sheet is linked beside them)."""
     def make(path: Path) -> None:
         from ..drawing import part_drawing_svg
-        path.write_text(part_drawing_svg(part_factory()))
-    make.__qualname__ = f"drawing_{part_factory.__name__}"
+        path.write_text(part_drawing_svg(part_factory(), views_only))
+    make.__qualname__ = f"drawing_{part_factory.__name__}" + ("_views" if views_only else "")
     return make
 
 
-def assembly_drawing(robot_factory):
-    """A figure maker: the assembly drawing of the robot that `robot_factory()` returns."""
+def assembly_drawing(robot_factory, views_only: bool = False):
+    """A figure maker: the assembly drawing of the robot that `robot_factory()` returns, or
+    only its views with a key to the balloons."""
     def make(path: Path) -> None:
         from ..drawing import assembly_drawing_svg
-        path.write_text(assembly_drawing_svg(robot_factory()))
-    make.__qualname__ = "assembly"
+        path.write_text(assembly_drawing_svg(robot_factory(), views_only))
+    make.__qualname__ = "assembly" + ("_views" if views_only else "")
     return make
+
+
+def drawing_figures(media: str, name: str, maker, factory, inputs: list[str], title: str) -> list:
+    """A drawing's two figures: `name.svg`, the views the page shows, and `name-sheet.svg`,
+    the whole A4 sheet with its title block, which the page links to. `maker` is
+    part_drawing or assembly_drawing."""
+    from ..media import Figure
+    return [Figure(f"{media}/{name}.svg", maker(factory, views_only=True), inputs, title),
+            Figure(f"{media}/{name}-sheet.svg", maker(factory), inputs, f"{title}: the whole sheet")]

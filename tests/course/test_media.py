@@ -44,10 +44,17 @@ def test_every_image_on_a_page_exists_and_is_made_by_code():
     assert not problems, "\n".join(problems)
 
 
+def page_links():
+    """Every /media/ file a page links to (a drawing's whole sheet, under its views)."""
+    for page in sorted((ROOT / "_pages").rglob("*.md")):
+        for m in re.finditer(r"\]\((/media/[^)\s]+)\)", page.read_text()):
+            yield m.group(1).lstrip("/")
+
+
 def test_every_figure_is_shown_somewhere():
-    shown = {src for _, src in page_images()}
+    shown = {src for _, src in page_images()} | set(page_links())
     unused = [f.output for f in FIGURES if f.output not in shown]
-    assert not unused, f"figures no page shows: {unused}"
+    assert not unused, f"figures no page shows or links to: {unused}"
 
 
 @pytest.fixture(scope="module")

@@ -87,11 +87,12 @@ def test_published_notebooks_carry_their_images(whole_site):
         published = json.loads((whole_site / "notebooks" / committed.name).read_text(encoding="utf-8"))
         for cell in published["cells"]:
             text = "".join(cell["source"])
-            assert "../media/" not in text, (committed.name, "an image left as a path")
+            assert not re.search(r'!\[[^\]]*\]\(\.\./|src="\.\./', text), \
+                (committed.name, "an image left as a path")
             for name in re.findall(r"attachment:([^)\"\s]+)", text):
                 data = cell.get("attachments", {}).get(name)
                 assert data and len(data) == 1, (committed.name, name)
-        shown = len(re.findall(r"\.\./media/", committed.read_text(encoding="utf-8")))
+        shown = len(re.findall(r"!\[[^\]]*\]\(\.\./media/", committed.read_text(encoding="utf-8")))
         embedded = sum(len(c.get("attachments", {})) for c in published["cells"])
         assert embedded >= min(shown, 1), committed.name
 
@@ -101,7 +102,7 @@ def test_the_pages_build_tells_the_setup_cell_the_site_and_the_tool(tmp_path):
     setup cell fetches from the site and installs sw2sim from the repository's archive."""
     if shutil.which("ruby") is None:
         pytest.skip("ruby is not installed (`make setup` installs Jekyll's)")
-    source = ROOT / "notebooks" / "practice-1-03-exported-package.ipynb"
+    source = ROOT / "notebooks" / "practice-1-01-modelling.ipynb"
     script = (f"require {str(PLUGIN)!r}\n"
               "config = {'url' => 'https://example.org', 'baseurl' => '/course',"
               " 'repository' => 'someone/course', 'repository_branch' => 'main'}\n"
@@ -111,7 +112,11 @@ def test_the_pages_build_tells_the_setup_cell_the_site_and_the_tool(tmp_path):
     done = subprocess.run(["ruby", "-e", script, str(source)], capture_output=True, text=True,
                           timeout=60)
     assert done.returncode == 0, done.stderr
-    setup = "".join(json.loads(done.stdout)["cells"][1]["source"])
+    cells = json.loads(done.stdout)["cells"]
+    setup = "".join(cells[1]["source"])
+    markdown = "".join("".join(c["source"]) for c in cells if c["cell_type"] == "markdown")
+    assert "](../" not in markdown, "links to the repository's files point at the site"
+    assert "](https://example.org/course/media/practice-1/base-sheet.svg)" in markdown
     assert 'site="https://example.org/course"' in setup
     assert ('tool="sw2sim[course] @ https://github.com/someone/course/archive/refs/heads/main.zip"'
             in setup)

@@ -11,7 +11,7 @@ from ...rviz_picture import rviz_picture
 from sw2sim.render import render, save_png
 from .. import load_script
 from . import design
-from ..shared import assembly_drawing, part_drawing
+from ..shared import assembly_drawing, drawing_figures, part_drawing
 
 import mujoco  # noqa: E402  (after sw2sim has chosen the GL platform)
 
@@ -114,10 +114,9 @@ DESIGN = ["course/practices/practice_1/design.py", "course/parts.py", "course/dr
 SIM = [PACKAGE, "sw2sim/loader.py", "sw2sim/render.py", "course/plotting.py"]
 
 FIGURES = [
-    Figure(f"{MEDIA}/base.svg", part_drawing(design.base), DESIGN, "Drawing of the base"),
-    Figure(f"{MEDIA}/wheel.svg", part_drawing(design.wheel), DESIGN, "Drawing of the wheel"),
-    Figure(f"{MEDIA}/assembly.svg", assembly_drawing(design.robot),
-           DESIGN + ["course/exporter_format.py"], "Assembly"),
+    *drawing_figures(MEDIA, "base", part_drawing, design.base, DESIGN, "Drawing of the base"),
+    *drawing_figures(MEDIA, "wheel", part_drawing, design.wheel, DESIGN, "Drawing of the wheel"),
+    *drawing_figures(MEDIA, "assembly", assembly_drawing, design.robot, DESIGN + ["course/exporter_format.py"], "Assembly"),
     Figure(f"{MEDIA}/model.png", model_picture, SIM, "The model in MuJoCo"),
     Figure(f"{MEDIA}/joint_axes.png", axes_picture, SIM, "Joint axes"),
     Figure(f"{MEDIA}/unlocked_base.png", unlocked_strip, SIM, "A base that is not locked"),

@@ -12,7 +12,7 @@ from ...rviz_picture import rviz_picture
 from sw2sim.render import render, save_png
 from .. import load_script
 from . import design
-from ..shared import assembly_drawing, part_drawing
+from ..shared import assembly_drawing, drawing_figures, part_drawing
 
 import mujoco  # noqa: E402  (after sw2sim has chosen the GL platform)
 
@@ -154,11 +154,10 @@ DESIGN = ["course/practices/practice_3/design.py", "course/parts.py", "course/dr
 SIM = [PACKAGE, "sw2sim/loader.py", "sw2sim/ros_control.py", "sw2sim/render.py", "course/plotting.py"]
 
 FIGURES = [
-    Figure(f"{MEDIA}/base.svg", part_drawing(design.base), DESIGN, "Drawing of the base"),
-    Figure(f"{MEDIA}/middle_arm.svg", part_drawing(design.middle_arm), DESIGN, "Drawing of the middle arm"),
-    Figure(f"{MEDIA}/end_arm.svg", part_drawing(design.end_arm), DESIGN, "Drawing of the end arm"),
-    Figure(f"{MEDIA}/assembly.svg", assembly_drawing(design.robot),
-           DESIGN + ["course/exporter_format.py"], "Assembly"),
+    *drawing_figures(MEDIA, "base", part_drawing, design.base, DESIGN, "Drawing of the base"),
+    *drawing_figures(MEDIA, "middle_arm", part_drawing, design.middle_arm, DESIGN, "Drawing of the middle arm"),
+    *drawing_figures(MEDIA, "end_arm", part_drawing, design.end_arm, DESIGN, "Drawing of the end arm"),
+    *drawing_figures(MEDIA, "assembly", assembly_drawing, design.robot, DESIGN + ["course/exporter_format.py"], "Assembly"),
     Figure(f"{MEDIA}/model.png", model_picture, SIM, "The arm in MuJoCo"),
     Figure(f"{MEDIA}/reach.png", reach, SIM, "The arm's reach at its limits"),
     Figure(f"{MEDIA}/velocity_limit.png", velocity_limit, SIM, "Joint speed with and without the limit"),

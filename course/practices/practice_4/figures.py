@@ -13,7 +13,7 @@ from ...rviz_picture import rviz_picture
 from sw2sim.render import render, save_png
 from .. import load_script
 from . import design
-from ..shared import assembly_drawing, part_drawing
+from ..shared import assembly_drawing, drawing_figures, part_drawing
 
 import mujoco  # noqa: E402  (after sw2sim has chosen the GL platform)
 
@@ -214,10 +214,9 @@ SIM = [PACKAGE, "examples/example_3/scripts/arm_controller.py", "sw2sim/loader.p
        "sw2sim/ros_control.py", "sw2sim/render.py", "course/plotting.py"]
 
 FIGURES = [
-    Figure(f"{MEDIA}/bar.svg", part_drawing(design.bar), DESIGN, "Drawing of the bar with its end plates"),
-    Figure(f"{MEDIA}/block.svg", part_drawing(design.block), DESIGN, "Drawing of the block"),
-    Figure(f"{MEDIA}/assembly.svg", assembly_drawing(design.robot),
-           DESIGN + ["course/exporter_format.py"], "Assembly"),
+    *drawing_figures(MEDIA, "bar", part_drawing, design.bar, DESIGN, "Drawing of the bar with its end plates"),
+    *drawing_figures(MEDIA, "block", part_drawing, design.block, DESIGN, "Drawing of the block"),
+    *drawing_figures(MEDIA, "assembly", assembly_drawing, design.robot, DESIGN + ["course/exporter_format.py"], "Assembly"),
     Figure(f"{MEDIA}/model.png", model_picture, SIM, "The bar and block in MuJoCo"),
     Figure(f"{MEDIA}/limit_typo.png", limit_typo, SIM, "A typo in the upper limit"),
     Figure(f"{MEDIA}/viewer_sliders.png", viewer_sliders, SIM, "The viewer's slider, sketched"),

@@ -12,7 +12,7 @@ from ...rviz_picture import rviz_picture
 from sw2sim.render import render, save_png
 from .. import load_script
 from . import design
-from ..shared import assembly_drawing, part_drawing
+from ..shared import assembly_drawing, drawing_figures, part_drawing
 
 import mujoco  # noqa: E402  (after sw2sim has chosen the GL platform)
 
@@ -180,11 +180,11 @@ DESIGN = ["course/practices/practice_5/design.py", "course/parts.py", "course/dr
 SIM = [PACKAGE, "sw2sim/loader.py", "sw2sim/ros_control.py", "sw2sim/render.py", "course/plotting.py"]
 
 FIGURES = [
-    Figure(f"{MEDIA}/chassis.svg", part_drawing(design.chassis), DESIGN, "Drawing of the chassis"),
-    Figure(f"{MEDIA}/knuckle.svg", part_drawing(design.knuckle), DESIGN, "Drawing of a steering knuckle"),
-    Figure(f"{MEDIA}/wheel.svg", part_drawing(design.wheel), DESIGN, "Drawing of a wheel"),
-    Figure(f"{MEDIA}/steering_link.svg", part_drawing(design.steering_link), DESIGN, "Drawing of the steering link"),
-    Figure(f"{MEDIA}/assembly.svg", assembly_drawing(design.robot), DESIGN + ["course/exporter_format.py"], "Assembly"),
+    *drawing_figures(MEDIA, "chassis", part_drawing, design.chassis, DESIGN, "Drawing of the chassis"),
+    *drawing_figures(MEDIA, "knuckle", part_drawing, design.knuckle, DESIGN, "Drawing of a steering knuckle"),
+    *drawing_figures(MEDIA, "wheel", part_drawing, design.wheel, DESIGN, "Drawing of a wheel"),
+    *drawing_figures(MEDIA, "steering_link", part_drawing, design.steering_link, DESIGN, "Drawing of the steering link"),
+    *drawing_figures(MEDIA, "assembly", assembly_drawing, design.robot, DESIGN + ["course/exporter_format.py"], "Assembly"),
     Figure(f"{MEDIA}/model.png", model_picture, SIM, "The car in MuJoCo"),
     Figure(f"{MEDIA}/path_vs_circle.png", path_vs_circle, SIM, "Driven paths against the predicted circles"),
     Figure(f"{MEDIA}/knuckle_angles.png", knuckle_angles, SIM, "Knuckle angles against Equation 4"),
