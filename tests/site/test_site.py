@@ -386,6 +386,11 @@ import rospy
 ```
 {% endraw %}
 
+> **Warning:** A box with `code` and two lines
+> of text.
+
+> A plain quote stays a quote.
+
 ## Figures
 
 ![A figure](/media/figure.png)
@@ -470,6 +475,25 @@ def test_include_code_in_a_list_item(demo):
     page = _demo_page(demo)
     item = between(between(page, '<div class="page-body">', "</main>"), "<li>", "</li>")
     assert code_text(item) == DEMO_SCRIPT, "include_code with indent=3 did not stay inside the list item"
+
+
+def test_a_quote_with_a_label_becomes_an_admonition(demo):
+    page = _demo_page(demo)
+    box = between(page, '<aside class="admonition admonition-warning" role="note">', "</aside>")
+    assert box and re.search(r"<strong>Warning:</strong> A box with <code[^>]*>code</code> and two lines", box)
+    assert "<blockquote>\n  <p>A plain quote stays a quote.</p>\n</blockquote>" in page
+
+
+def test_the_pages_use_admonitions_and_each_keeps_its_label(site):
+    boxes = [(page, m) for page in site.rglob("*.html")
+             for m in re.finditer(r'<aside class="admonition admonition-(\w+)" role="note">\s*<p><strong>(\w+)',
+                                  page.read_text(encoding="utf-8"))]
+    assert len(boxes) >= 5
+    assert {m[1] for _, m in boxes} >= {"tip", "warning"}
+    assert all(m[1] == m[2].lower() for _, m in boxes), "a box's kind is its label"
+    left = [str(p.relative_to(site)) for p in site.rglob("*.html")
+            if re.search(r"<blockquote>\s*<p><strong>(Tip|Note|Warning)", p.read_text(encoding="utf-8"))]
+    assert not left, f"labelled quotes left as quotes: {left}"
 
 
 def test_raw_keeps_liquid_text(demo):
