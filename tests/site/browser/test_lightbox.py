@@ -1,0 +1,60 @@
+"""A page's image opens enlarged in a dialog (assets/js/site.js): from the mouse or the
+keyboard, closed with Escape, focus back on the image. On a phone a drawing opens at its
+own size, wider than the screen, and the reader pans across it."""
+
+from __future__ import annotations
+
+PHONE = {"width": 390, "height": 844}
+LAPTOP = {"width": 1366, "height": 900}
+PAGE = "/practice-5/modelling/"
+DRAWING = '.zoom-button:has(img[src$="/media/practice-5/chassis.svg"])'
+
+OPENED = """() => {
+    const dialog = document.querySelector('dialog.lightbox');
+    const image = dialog.querySelector('.lightbox-image');
+    const close = dialog.querySelector('.lightbox-close').getBoundingClientRect();
+    return {open: dialog.open, src: image.getAttribute('src'), image: image.getBoundingClientRect().width,
+            scrollWidth: dialog.scrollWidth, clientWidth: dialog.clientWidth,
+            closeVisible: close.left >= 0 && close.right <= innerWidth && close.top >= 0};
+}"""
+
+
+def _open(browser_page, size):
+    page = browser_page.page
+    page.set_viewport_size(size)
+
+    def click(page):
+        page.locator(DRAWING).scroll_into_view_if_needed()
+        page.locator(DRAWING).click()
+        page.wait_for_function("() => document.querySelector('.lightbox-image').complete")
+
+    visit = browser_page.visit(PAGE, then=click)
+    assert not visit.problems(), visit.problems()
+    return page, page.evaluate(OPENED)
+
+
+def test_on_a_laptop_the_drawing_opens_within_the_window_and_escape_closes_it(browser_page):
+    try:
+        page, shown = _open(browser_page, LAPTOP)
+        assert shown["open"] and shown["src"].endswith("/media/practice-5/chassis.svg")
+        assert shown["image"] <= LAPTOP["width"] and shown["scrollWidth"] <= shown["clientWidth"] + 1
+        page.keyboard.press("Escape")
+        assert not page.evaluate("() => document.querySelector('dialog.lightbox').open")
+        assert page.evaluate("() => document.activeElement.classList.contains('zoom-button')")
+    finally:
+        browser_page.page.set_viewport_size({"width": 1280, "height": 800})
+
+
+def test_on_a_phone_the_drawing_opens_at_its_own_size_and_pans(browser_page):
+    try:
+        page, shown = _open(browser_page, PHONE)
+        assert shown["open"]
+        assert shown["image"] > 1.5 * PHONE["width"], "the enlarged drawing is wider than the phone"
+        assert shown["scrollWidth"] > shown["clientWidth"], "the dialog scrolls sideways"
+        page.evaluate("() => document.querySelector('dialog.lightbox').scrollBy(300, 0)")
+        assert page.evaluate("() => document.querySelector('dialog.lightbox').scrollLeft") > 0
+        assert page.evaluate(OPENED)["closeVisible"], "Close stays on the screen while panning"
+        page.get_by_role("button", name="Close").click()
+        assert not page.evaluate("() => document.querySelector('dialog.lightbox').open")
+    finally:
+        browser_page.page.set_viewport_size({"width": 1280, "height": 800})
