@@ -135,10 +135,11 @@ ROS_ROUNDS = 2   # pairs of whole runs: the figure varies by several seconds fro
 
 
 def ros() -> None:
-    """What the ROS tests add to `make test`: the whole suite as `make test` runs it (two
-    workers on two cores), with and without tests/ros, in alternating pairs."""
-    section = Section("the ROS tests' share of `make test` (pytest -n 2 --dist loadscope)")
-    command = [sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider", "-n", "2",
+    """What the ROS tests add to `make test`: the whole suite as `make test` runs it (a
+    worker per core), with and without tests/ros, in alternating pairs."""
+    jobs = str(cores())   # the Makefile's TEST_JOBS (auto)
+    section = Section(f"the ROS tests' share of `make test` (pytest -n {jobs} --dist loadscope)")
+    command = [sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider", "-n", jobs,
                "--dist", "loadscope"]
     added = []
     for round_ in range(1, ROS_ROUNDS + 1):
