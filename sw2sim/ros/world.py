@@ -97,6 +97,7 @@ class Controller:
     publishers: tuple = ()
     subscriber: object = None
     next_publish: float = 0.0
+    places: tuple | None = None   # (model, qpos address, dof address, actuator, timestep)
     error_sum: float = 0.0    # the PID's integrated error
     integral: float = 0.0     # the PID's integral term, in N or N·m
 
@@ -286,13 +287,26 @@ class World:
 
     def _drive(self, c: Controller) -> None:
         """Set the controller's actuator to the effort law that holds in this state:
-        force = ctrl + biasprm[1] * q + biasprm[2] * v."""
-        q, v = self._state_of(c.joint)
-        self._integrate(c, q, v)
-        law = hardware.effort(self._law(c), self.handles.get(c.joint), q, v)
-        a = self.model.actuator(c.actuator).id
-        self.data.ctrl[a] = law[0]
-        self.model.actuator_biasprm[a, 1:3] = law[1:]
+        force = ctrl + biasprm[1] * q + biasprm[2] * v. What `_integrate` and `_law` do,
+        with the joint's and the actuator's places in the model looked up once per model
+        (this runs every step, ten thousand times a second at ten times real time)."""
+        m, d = self.model, self.data
+        if c.places is None or c.places[0] is not m:
+            j = m.joint(c.joint).id
+            c.places = (m, int(m.jnt_qposadr[j]), int(m.jnt_dofadr[j]),
+                        m.actuator(c.actuator).id, float(m.opt.timestep))
+        _, qadr, vadr, a, dt = c.places
+        q, v = float(d.qpos[qadr]), float(d.qvel[vadr])
+        handle, pid = self.handles.get(c.joint), c.settings.get("pid") or {}
+        setpoint = hardware.command(c.kind, c.command, handle)
+        if c.kind in (POSITION, VELOCITY):
+            error = setpoint - (q if c.kind == POSITION else v)
+            c.error_sum, c.integral = hardware.integral(pid, c.error_sum, error, dt)
+        law = hardware.controller(c.kind, pid, setpoint)
+        law = hardware.effort((law[0] + c.integral, law[1], law[2]), handle, q, v)
+        d.ctrl[a] = law[0]
+        m.actuator_biasprm[a, 1] = law[1]
+        m.actuator_biasprm[a, 2] = law[2]
 
     def _actuator(self, c: Controller) -> str:
         """Add the controller's actuator (a force set by _drive at every step) and
