@@ -30,6 +30,11 @@ import tempfile
 import time
 from pathlib import Path
 
+# The environment before `import sw2sim` below chooses a GL platform for this process
+# (MUJOCO_GL, PYOPENGL_PLATFORM): test runs get this one, as under `make test`, so that
+# each of their processes makes its own choice.
+ORIGINAL_ENVIRONMENT = dict(os.environ)
+
 # The course build is found by folder: run as tools/benchmark.py, this file's folder is on
 # sys.path instead of the repository.
 sys.path.insert(1, str(Path(__file__).resolve().parent.parent))
@@ -120,12 +125,21 @@ def figures() -> None:
     section.total()
 
 
+def make_test_environment() -> dict[str, str]:
+    """The environment `make test` runs pytest in (Makefile): this process's before it
+    chose a GL platform, compiled modules kept in .cache/pycache."""
+    env = dict(ORIGINAL_ENVIRONMENT)
+    env.pop("PYTHONDONTWRITEBYTECODE", None)
+    env.setdefault("PYTHONPYCACHEPREFIX", str(ROOT / ".cache" / "pycache"))
+    return env
+
+
 def tests() -> None:
     section = Section("test files (each in a pytest of its own)")
     for path in sorted((ROOT / "tests").rglob("test_*.py")):
         command = [sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider", str(path)]
         done = section.timed(str(path.relative_to(ROOT)), subprocess.run, command, cwd=ROOT,
-                             capture_output=True, text=True)
+                             capture_output=True, text=True, env=make_test_environment())
         if done.returncode != 0:
             print(f"   exit status {done.returncode}")
     section.total()
@@ -136,18 +150,23 @@ ROS_ROUNDS = 2   # pairs of whole runs: the figure varies by several seconds fro
 
 def ros() -> None:
     """What the ROS tests add to `make test`: the whole suite as `make test` runs it (a
-    worker per core), with and without tests/ros, in alternating pairs."""
+    worker per core, in its environment), with and without tests/ros, in pairs that
+    take turns going first."""
     jobs = str(cores())   # the Makefile's TEST_JOBS (auto)
     section = Section(f"the ROS tests' share of `make test` (pytest -n {jobs} --dist loadscope)")
     command = [sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider", "-n", jobs,
                "--dist", "loadscope"]
     added = []
+    runs = [("without tests/ros", ["--ignore=tests/ros"]), ("with tests/ros", [])]
     for round_ in range(1, ROS_ROUNDS + 1):
         walls = {}
-        for label, extra in (("without tests/ros", ["--ignore=tests/ros"]), ("with tests/ros", [])):
+        # each kind of run goes first in every other round: a run right after another
+        # may find the machine slower
+        for label, extra in (runs if round_ % 2 else runs[::-1]):
             start = time.perf_counter()
             done = section.timed(f"round {round_}: {label}", subprocess.run, [*command, *extra],
-                                 cwd=ROOT, capture_output=True, text=True)
+                                 cwd=ROOT, capture_output=True, text=True,
+                                 env=make_test_environment())
             walls[label] = time.perf_counter() - start
             if done.returncode != 0:
                 print(f"   exit status {done.returncode}: {done.stdout.strip().splitlines()[-1:]}")
