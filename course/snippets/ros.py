@@ -215,9 +215,11 @@ class Session:
     def start(self, command: Command) -> Running:
         log = self.logs / f"{len(self.running) + len(self.ran):02d}-{command.program}.log"
         with open(log, "wb") as out:
+            from sw2sim.ros.run import with_ctrl_c
             process = subprocess.Popen(["bash", "-c", command.text], cwd=self.cwd,
                                        env=self.env, stdout=out, stderr=subprocess.STDOUT,
-                                       stdin=subprocess.DEVNULL, start_new_session=True)
+                                       stdin=subprocess.DEVNULL, start_new_session=True,
+                                       preexec_fn=with_ctrl_c)
         running = Running(command, process, log)
         self.running.append(running)
         return running
@@ -227,10 +229,12 @@ class Session:
         state = self.folder / "shell"
         script = (f"{command.text}\nstatus=$?\npwd > '{state}.cwd'\nenv -0 > '{state}.env'\n"
                   "exit $status\n")
+        from sw2sim.ros.run import with_ctrl_c
         try:
             done = subprocess.run(["bash", "-c", script], cwd=self.cwd,
                                   env=self.env, capture_output=True, text=True,
-                                  timeout=COMMAND_TIMEOUT, start_new_session=True)
+                                  timeout=COMMAND_TIMEOUT, start_new_session=True,
+                                  preexec_fn=with_ctrl_c)
         except subprocess.TimeoutExpired:
             raise RosBlockError(command.location, f"`{command.text}` did not end within "
                                                   f"{COMMAND_TIMEOUT:g} s") from None

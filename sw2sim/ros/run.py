@@ -106,6 +106,14 @@ def running(pids) -> list[int]:
     return [pid for pid in pids if _alive(pid)]
 
 
+def with_ctrl_c() -> None:
+    """For `preexec_fn`: Ctrl-C (SIGINT) and SIGQUIT as they are by default. A process
+    started in the background of a shell without job control inherits both ignored, and
+    ROS nodes that ignore Ctrl-C stop only when killed, seconds later, without cleaning up."""
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+    signal.signal(signal.SIGQUIT, signal.SIG_DFL)
+
+
 def stop(*processes: subprocess.Popen) -> None:
     """Stop processes, their groups and everything below them: SIGINT to each group first
     (as Ctrl-C, which lets roslaunch stop its nodes in order), SIGINT to the nodes it left
@@ -174,7 +182,8 @@ def run(path: str, launch: str | None = None, duration: float | None = None,
             port = _port()
             uri = env["ROS_MASTER_URI"] = f"http://127.0.0.1:{port}"
             started.append(subprocess.Popen(["roscore", "-p", str(port)], env=env,
-                                            start_new_session=True, stdout=subprocess.DEVNULL,
+                                            start_new_session=True, preexec_fn=with_ctrl_c,
+                                            stdout=subprocess.DEVNULL,
                                             stderr=subprocess.DEVNULL))
             deadline = time.monotonic() + 15
             while not _answers(uri):
@@ -184,7 +193,7 @@ def run(path: str, launch: str | None = None, duration: float | None = None,
                 time.sleep(0.1)
         say(f"sw2sim ros: {launch_file} on {uri}, MuJoCo standing in for Gazebo")
         roslaunch = subprocess.Popen(["roslaunch", "--wait", str(launch_file)], env=env,
-                                     start_new_session=True)
+                                     start_new_session=True, preexec_fn=with_ctrl_c)
         started.append(roslaunch)
         end = None if duration is None else time.monotonic() + duration
         while roslaunch.poll() is None and (end is None or time.monotonic() < end):

@@ -57,17 +57,20 @@ class Ros:
         """Start a process in a session (and process group) of its own; its output goes to
         a log file named `name`."""
         log = open(self.logs / f"{name}.log", "wb")
+        from sw2sim.ros.run import with_ctrl_c
         process = subprocess.Popen(list(command), env=self.env, stdout=log,
                                    stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL,
-                                   start_new_session=True)
+                                   start_new_session=True, preexec_fn=with_ctrl_c)
         log.close()
         self.processes.append(process)
         return process
 
     def run(self, *command: str, timeout: float = 30.0) -> subprocess.CompletedProcess:
         """Run a command to its end (in its own process group, killed on timeout)."""
+        from sw2sim.ros.run import with_ctrl_c
         process = subprocess.Popen(list(command), env=self.env, stdout=subprocess.PIPE,
-                                   stderr=subprocess.PIPE, text=True, start_new_session=True)
+                                   stderr=subprocess.PIPE, text=True, start_new_session=True,
+                                   preexec_fn=with_ctrl_c)
         try:
             out, err = process.communicate(timeout=timeout)
         except subprocess.TimeoutExpired:
