@@ -101,16 +101,11 @@ def needed_files(sources: list[str], root: Path = ROOT) -> list[str]:
     """The repository files a notebook's code cells (`sources`) read, as paths from the
     root: what its setup cell fetches from the site outside a clone. The tool (sw2sim/) is
     installed with pip instead."""
-    modules: set[Path] = set()
-    data: set[Path] = set()
-    for source in sources:
-        modules |= freshness.imports_of(source)
-        for node in ast.walk(ast.parse(source)):
-            if isinstance(node, ast.Constant) and isinstance(node.value, str):
-                data.update(named_files(node.value, root))
-                # a package named on its own, as in Path("examples") / "example_5"
-                if re.fullmatch(r"[\w-]+", node.value) and (root / "examples" / node.value).is_dir():
-                    data.update(freshness.files_in(root / "examples" / node.value))
+    modules, strings = read_by(sources)
+    data = {f for text in strings for f in named_files(text, root)}
+    for text in strings:   # a package named on its own, as in Path("examples") / "example_5"
+        if re.fullmatch(r"[\w-]+", text) and (root / "examples" / text).is_dir():
+            data.update(freshness.files_in(root / "examples" / text))
     # Code that reads one file of an example package may build the path to another: the
     # package comes whole.
     for file in list(data):
@@ -120,6 +115,17 @@ def needed_files(sources: list[str], root: Path = ROOT) -> list[str]:
     files = freshness.imported_closure(sorted(modules)) | data   # __init__ files included
     names = {f.relative_to(root).as_posix() for f in files}
     return sorted(n for n in names if not n.startswith("sw2sim/"))
+
+
+def read_by(sources: list[str]) -> tuple[set[Path], list[str]]:
+    """The repository modules code imports, and the strings it holds (paths among them)."""
+    modules: set[Path] = set()
+    strings: list[str] = []
+    for source in sources:
+        modules |= freshness.imports_of(source)
+        strings += [node.value for node in ast.walk(ast.parse(source))
+                    if isinstance(node, ast.Constant) and isinstance(node.value, str)]
+    return modules, strings
 
 
 def named_files(text: str, root: Path) -> list[Path]:

@@ -19,7 +19,6 @@ other change runs the notebook again.
 
 from __future__ import annotations
 
-import ast
 import json
 import re
 import sys
@@ -36,7 +35,7 @@ from nbformat.v4 import new_code_cell, new_markdown_cell, new_notebook
 from . import freshness, media
 from .freshness import Fingerprint
 from .media import RENDERERS
-from .notebook_setup import named_files, needed_files, on_site, setup_code
+from .notebook_setup import named_files, needed_files, on_site, read_by, setup_code
 from .practices import ROOT
 from .snippets import Block, Page, find_pages, parse_page
 from .snippets.parse import (INCLUDE_CODE, include_code_arguments, split_front_matter,
@@ -294,13 +293,8 @@ def output_hash(nb: NotebookNode, root: Path = ROOT) -> str:
 def _files_read(sources: list[str], root: Path) -> set[Path]:
     """Repository modules the code imports (with what they import) and files or folders
     it names by a relative path, such as "examples/example_1"."""
-    modules: set[Path] = set()
-    data: set[Path] = set()
-    for source in sources:
-        modules |= freshness.imports_of(source)
-        for node in ast.walk(ast.parse(source)):
-            if isinstance(node, ast.Constant) and isinstance(node.value, str):
-                data.update(named_files(node.value, root))
+    modules, strings = read_by(sources)
+    data = {f for text in strings for f in named_files(text, root)}
     # course/media.py is the build's own, as for the figures (their modules import it too).
     return freshness.imported_closure(sorted(modules), leave_out=[media.MODULE]) | data
 
