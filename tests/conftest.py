@@ -1,42 +1,17 @@
-"""Shared pytest configuration."""
+"""Shared pytest configuration: how `make test` shares the tests among its workers
+(tests/scheduling.py), and the summary of the page blocks it ran."""
 
 import pytest
 
 import sw2sim  # noqa: F401  (chooses the GL platform before any test module imports mujoco)
-
-# Folders whose test modules share session fixtures that are costly to make: the browser
-# tests load and audit every page of the site once, for all their modules. Under
-# `--dist loadscope` (make test) each such folder goes to one pytest-xdist worker whole,
-# instead of each worker making the fixtures again for the modules it was given.
-SHARED_SESSION_FOLDERS = ("tests/site/browser/",)
-
-
-# Modules whose tests are long and share nothing: each test is a unit of its own, so that
-# the workers split them (every ROS page runs its own master and simulation).
-SPLIT_MODULES = ("tests/ros/test_page_blocks.py",)
-
-
-def scope_of(nodeid: str) -> str:
-    """The unit of work a test belongs to: its folder if listed above, the test itself in
-    a split module, else its module."""
-    for folder in SHARED_SESSION_FOLDERS:
-        if nodeid.startswith(folder):
-            return folder
-    module = nodeid.split("::", 1)[0]
-    return nodeid if module in SPLIT_MODULES else module
+from scheduling import scheduling
 
 
 @pytest.hookimpl(optionalhook=True)
 def pytest_xdist_make_scheduler(config, log):
     if config.getoption("dist") != "loadscope":
         return None
-    from xdist.scheduler import LoadScopeScheduling
-
-    class SharedFolderScheduling(LoadScopeScheduling):
-        def _split_scope(self, nodeid: str) -> str:
-            return scope_of(nodeid)
-
-    return SharedFolderScheduling(config, log)
+    return scheduling(config, log)
 
 
 def pytest_terminal_summary(terminalreporter, exitstatus, config):
