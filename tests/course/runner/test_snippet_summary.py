@@ -11,7 +11,8 @@ TESTS = ROOT / "tests"
 
 
 def test_terminal_summary(tmp_path):
-    shutil.copy(TESTS / "conftest.py", tmp_path / "conftest.py")
+    for helper in ("conftest.py", "scheduling.py"):
+        shutil.copy(TESTS / helper, tmp_path / helper)
     (tmp_path / "test_fake_pages.py").write_text(
         "def test_a(record_property):\n"
         "    record_property('snippets_skipped', ['_pages/a.md:8: needs ROS'])\n"
