@@ -1,7 +1,7 @@
 """The `sw2sim` command: check, compare, convert, view and render an exported package.
 
-Every command takes the package folder (the one holding package.xml) or its .urdf file,
-reads it once (`sw2sim.package.find_package`, inside the check every command starts with)
+Every command takes the package folder (the one holding package.xml), its .urdf file or
+a .zip of it (sw2sim.archive), reads it once (`sw2sim.package.find_package`, inside the check every command starts with)
 and hands the Package on; `compare` reads two, without the check. MuJoCo is imported only
 inside a command: `view` must choose its GL platform first.
 
@@ -26,7 +26,8 @@ and say how to fix what is wrong, compare it with a lesson's reference package,
 convert it to a MuJoCo model folder, open it in MuJoCo's viewer, or save a picture
 of it.
 
-PATH is the package folder (the one holding package.xml) or its .urdf file.
+PATH is the package folder (the one holding package.xml), its .urdf file, or a .zip
+of the package folder (read as it is; nothing is unpacked beside it).
 Exit status: 0 done (warnings allowed), 1 the package has errors, 2 it cannot be
 used at all (or the command could not run).
 """
@@ -35,6 +36,7 @@ EXAMPLES = """\
 examples:
   sw2sim check examples/example_4
   sw2sim check my_robot/urdf/my_robot.urdf --json > report.json
+  sw2sim check my_robot.zip
   sw2sim compare my_export examples/example_1
   sw2sim convert examples/example_4 -o example_4_mujoco
   sw2sim view examples/example_4
@@ -180,7 +182,8 @@ def _parser() -> argparse.ArgumentParser:
 
     check = commands.add_parser("check", help="list what is wrong with a package, with fixes",
                                 description=CHECK_HELP, formatter_class=raw)
-    check.add_argument("path", metavar="PATH", help="package folder or .urdf file")
+    check.add_argument("path", metavar="PATH",
+                       help="package folder, .urdf file or .zip of the package")
     check.add_argument("--urdf", metavar="NAME", help="which URDF to read, where the package "
                          "holds several (its file name)")
     check.add_argument("--json", action="store_true", help="print the report as JSON")
@@ -190,7 +193,7 @@ def _parser() -> argparse.ArgumentParser:
     compare = commands.add_parser("compare", help="compare your export with a lesson's "
                                   "reference package", description=COMPARE_HELP,
                                   formatter_class=raw)
-    compare.add_argument("mine", metavar="MINE", help="your package folder or .urdf file")
+    compare.add_argument("mine", metavar="MINE", help="your package folder, .urdf file or .zip")
     compare.add_argument("reference", metavar="REFERENCE", help="the lesson's package folder "
                          "(examples/example_N) or .urdf file")
     compare.add_argument("--urdf", metavar="NAME", help="which URDF of MINE to read, where it "
@@ -202,7 +205,8 @@ def _parser() -> argparse.ArgumentParser:
     convert = commands.add_parser("convert", help="write a MuJoCo model folder (robot, scene, "
                                   "meshes, README)",
                                   description=CONVERT_HELP, formatter_class=raw)
-    convert.add_argument("path", metavar="PATH", help="package folder or .urdf file")
+    convert.add_argument("path", metavar="PATH",
+                         help="package folder, .urdf file or .zip of the package")
     convert.add_argument("--urdf", metavar="NAME", help="which URDF to read, where the package "
                          "holds several (its file name)")
     convert.add_argument("-o", "--output", metavar="DIR", required=True,
@@ -223,7 +227,8 @@ def _parser() -> argparse.ArgumentParser:
 
     view = commands.add_parser("view", help="open the package in MuJoCo's viewer",
                                description=VIEW_HELP, formatter_class=raw)
-    view.add_argument("path", metavar="PATH", help="package folder or .urdf file")
+    view.add_argument("path", metavar="PATH",
+                      help="package folder, .urdf file or .zip of the package")
     view.add_argument("--urdf", metavar="NAME", help="which URDF to read, where the package "
                          "holds several (its file name)")
     view.set_defaults(command="view", run=_view)
@@ -231,7 +236,8 @@ def _parser() -> argparse.ArgumentParser:
     render = commands.add_parser("render", help="save a picture of the package (no display "
                                  "needed)",
                                  description=RENDER_HELP, formatter_class=raw)
-    render.add_argument("path", metavar="PATH", help="package folder or .urdf file")
+    render.add_argument("path", metavar="PATH",
+                        help="package folder, .urdf file or .zip of the package")
     render.add_argument("--urdf", metavar="NAME", help="which URDF to read, where the package "
                          "holds several (its file name)")
     render.add_argument("-o", "--output", metavar="FILE", required=True, help="the PNG to write")
@@ -249,7 +255,7 @@ def _parser() -> argparse.ArgumentParser:
     ros = commands.add_parser("ros", help="run the package's launch file under ROS 1, with "
                               "MuJoCo in Gazebo's place", description=ROS_HELP,
                               formatter_class=raw)
-    ros.add_argument("path", metavar="PATH", help="package folder")
+    ros.add_argument("path", metavar="PATH", help="package folder or .zip of it")
     ros.add_argument("--launch", metavar="FILE", help="the launch file (default: "
                      "launch/gazebo.launch of the package)")
     ros.add_argument("--duration", type=float, metavar="S", help="stop after S seconds")

@@ -35,7 +35,9 @@ class LoadError(Exception):
                  kind: str = "invalid", fix: str | None = None, detail: str | None = None):
         self.file, self.line, self.message, self.kind = str(file), line, message, kind
         self.fix, self.detail = fix, message if detail is None else detail
-        where = f"{self.file}:{line}" if line else self.file
+        from .archive import shown    # a file of an unpacked .zip, named through the archive
+        named = shown(self.file) or self.file
+        where = f"{named}:{line}" if line else named
         super().__init__(f"{where}: {message}" + (f"; {fix}" if fix else ""))
 
 
@@ -108,6 +110,7 @@ def find_package(path: str | os.PathLike, urdf: str | None = None) -> Package:
     if not path.exists():
         raise LoadError(path, "no such file or folder; give a package folder or a .urdf file",
                         kind="missing")
+    path = _package_folder(_unpacked(path))
     root = path if path.is_dir() else (
         path.parent.parent if path.parent.name == "urdf" else path.parent)
     name = root.name
@@ -140,6 +143,77 @@ def find_package(path: str | os.PathLike, urdf: str | None = None) -> Package:
     return Package(root=root.resolve(), name=name, urdf=chosen, robot=robot,
                    manifest=manifest, source=given, chosen_because=because,
                    other_urdfs=others, expanded_from=expanded)
+
+
+def _unpacked(path: Path) -> Path:
+    """The folder a .zip archive unpacks to (sw2sim.archive); any other path as it is."""
+    from . import archive
+    if archive.is_zip(path):
+        try:
+            return archive.unpack(path, shown_as=str(path))
+        except archive.ArchiveError as exc:
+            raise LoadError(path, exc.message, kind=exc.kind, fix=exc.fix) from None
+    kind = archive.other_archive(path)
+    if kind:
+        raise LoadError(path, f"a {kind} archive, which is not read here", kind="unreadable",
+                        fix="unpack it and give the package folder it holds (a .zip is read "
+                            "as it is)")
+    return path
+
+
+# How far below a given folder a package is looked for, and how many folders at most.
+SEARCH_DEPTH, SEARCH_FOLDERS = 3, 2000
+
+
+def _package_folder(path: Path) -> Path:
+    """The package a folder stands for. A package's `urdf/` folder stands for the package.
+    A folder without package.xml or a URDF of its own that holds exactly one package up to
+    SEARCH_DEPTH below (the folder a zip or a download wraps around an export) stands for
+    that package; one that holds several is refused with their list."""
+    if not path.is_dir() or (path / "package.xml").is_file():
+        return path
+    if path.name.lower() == "urdf" and (path.parent / "package.xml").is_file():
+        return path.parent
+    if urdf_candidates(path):
+        return path
+    found = _packages_below(path)
+    if len(found) == 1:
+        return found[0]
+    if found:
+        from . import archive
+        names = [f"{f.relative_to(path).as_posix()}/" for f in found]
+        inside = archive.shown(path)
+        example = f"{path / names[0]}" if inside is None else None
+        raise LoadError(path, f"no URDF here, but {len(found)} packages below: "
+                        + ", ".join(names), kind="missing",
+                        fix=f"give one of them, such as {example}" if example else
+                        "unzip the archive and give one of them")
+    return path
+
+
+def _packages_below(top: Path) -> list[Path]:
+    """The package folders under `top` (holding package.xml, or a URDF where a package keeps
+    it), nearest first; not below a package, not in hidden folders or `__MACOSX`."""
+    found, level, seen = [], [top], 0
+    for _ in range(SEARCH_DEPTH):
+        below = []
+        for folder in level:
+            try:
+                children = sorted(c for c in folder.iterdir() if c.is_dir() and not c.is_symlink())
+            except OSError:
+                continue
+            for child in children:
+                seen += 1
+                if seen > SEARCH_FOLDERS:
+                    return found
+                if child.name.startswith(".") or child.name == "__MACOSX":
+                    continue
+                if (child / "package.xml").is_file() or urdf_candidates(child):
+                    found.append(child)
+                else:
+                    below.append(child)
+        level = below
+    return found
 
 
 def _is_xacro(path: Path) -> bool:

@@ -15,6 +15,7 @@ from pathlib import Path
 
 from lxml import etree
 
+from .. import archive
 from ..mesh_paths import package_files
 from ..package import LoadError, Package, find_package
 from .findings import ADVICE, FATAL, RULES, WARNING, Finding, Report, rule
@@ -197,6 +198,9 @@ def display(path: str | os.PathLike) -> str:
     Links are not followed (a package.xml that links elsewhere is still "package.xml"), and
     nothing is read from disk but the working folder's real name, once per folder: a report
     may hold thousands of findings."""
+    inside = archive.shown(path)
+    if inside is not None:
+        return display(inside)
     path = Path(os.path.abspath(path))
     cwd = os.getcwd()
     for base in (Path(os.path.abspath(cwd)), _real(cwd)):
@@ -229,12 +233,16 @@ def open_package(source: str | os.PathLike | Package, options: Options = DEFAULT
     except LoadError as exc:
         if exc.kind == "unsafe":    # "what is wrong; how to fix it"
             problem, _, fix = exc.message.partition("; ")
-            ctx.add("input-unreadable", problem, file=exc.file, fix=fix or None)
+            ctx.add("input-unreadable", problem, file=exc.file, fix=fix or exc.fix)
         else:
             ctx.add(_RULE_OF_KIND.get(exc.kind, "input-missing"), exc.detail, file=exc.file,
                     line=exc.line, fix=exc.fix)
         return ctx
     ctx.robot = ctx.package.robot
+    if (given.is_dir() and given.resolve() != ctx.package.root) or archive.is_zip(given):
+        # the package found for a folder or an archive, where it is not the path given:
+        # a urdf/ folder's package, the one package a wrapper folder or a zip holds
+        ctx.report.path = display(ctx.package.root)
     _several(ctx)
     return ctx
 

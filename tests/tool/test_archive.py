@@ -1,0 +1,151 @@
+"""What a user gives the tool besides the package folder itself: a .zip of the export (as
+Windows, PowerShell and macOS make them), the folder a download or a clone wraps around
+it, or the package's urdf/ folder."""
+
+import os
+import subprocess
+import sys
+import zipfile
+from pathlib import Path
+
+import pytest
+
+from packages import copy_example, edit, urdf_of
+from sw2sim import archive
+from sw2sim.check import check
+from sw2sim.package import LoadError, find_package
+
+
+def zipped(folder: Path, archive_path: Path, *, backslashes=False, macos=False) -> Path:
+    """`folder` zipped with the folder itself at the top, as "Send to > Compressed
+    (zipped) folder" does; with backslashes in the names, as PowerShell 5's
+    Compress-Archive writes them; with macOS's __MACOSX copies beside the files."""
+    with zipfile.ZipFile(archive_path, "w", zipfile.ZIP_DEFLATED) as zf:
+        for path in sorted(folder.rglob("*")):
+            if path.is_file():
+                name = path.relative_to(folder.parent).as_posix()
+                zf.write(path, name.replace("/", "\\") if backslashes else name)
+                if macos:
+                    parent, _, base = name.rpartition("/")
+                    zf.writestr(f"__MACOSX/{parent}/._{base}", b"\x00\x05\x16\x07 resource fork")
+    return archive_path
+
+
+def summary(report) -> list[tuple[str, str, int | None]]:
+    return sorted((f.rule, f.message.split(": ")[0], f.line) for f in report.findings)
+
+
+def test_a_zip_is_checked_as_the_folder_it_holds_and_named_through_the_archive(tmp_path, monkeypatch):
+    package = copy_example(4, tmp_path / "export")
+    edit(urdf_of(package), 'effort="', 'effort="-')    # a finding with a file and a line
+    zip_path = zipped(package, tmp_path / "example_4.zip")
+    before = zip_path.read_bytes()
+    monkeypatch.chdir(tmp_path)
+    from_zip, from_folder = check("example_4.zip"), check(package)
+    assert from_zip.findings and summary(from_zip) == summary(from_folder)
+    urdf = "urdf/example_4.urdf"
+    assert {f.file for f in from_zip.findings if f.line} == {f"example_4.zip/example_4/{urdf}"}
+    assert from_zip.path == "example_4.zip/example_4"
+    assert zip_path.read_bytes() == before, "the archive is only read"
+
+
+@pytest.mark.parametrize("style", ["backslashes", "macos"])
+def test_zips_from_powershell_and_macos_load(tmp_path, style):
+    package = copy_example(1, tmp_path / "export")
+    zip_path = zipped(package, tmp_path / "p.zip", **{style: True})
+    loaded = find_package(zip_path)
+    assert loaded.name == "example_1"
+    assert not list(loaded.root.rglob("._*")), "the __MACOSX copies are left out"
+    assert sorted(p.relative_to(loaded.root).as_posix() for p in loaded.root.rglob("*")
+                  if p.is_file()) == sorted(p.relative_to(package).as_posix()
+                                            for p in package.rglob("*") if p.is_file())
+    assert check(zip_path).status == 0
+
+
+def test_the_command_converts_a_zip_and_leaves_no_unpacked_copy(tmp_path):
+    package = copy_example(1, tmp_path / "export")
+    zip_path = zipped(package, tmp_path / "example_1.zip", backslashes=True)
+    scratch = tmp_path / "tmp"
+    scratch.mkdir()
+    env = {**os.environ, "TMPDIR": str(scratch)}
+    done = subprocess.run([sys.executable, "-m", "sw2sim", "convert", str(zip_path), "-o",
+                           str(tmp_path / "model")], capture_output=True, text=True, env=env,
+                          timeout=120)
+    assert done.returncode == 0, done.stdout + done.stderr
+    assert (tmp_path / "model" / "scene.xml").is_file()
+    assert list(scratch.iterdir()) == [], "the unpacked copy is removed when the command ends"
+
+
+def test_a_zip_that_names_files_outside_it_is_refused_before_anything_is_written(tmp_path):
+    zip_path = tmp_path / "evil.zip"
+    with zipfile.ZipFile(zip_path, "w") as zf:
+        zf.writestr("pkg/package.xml", "<package><name>pkg</name></package>")
+        zf.writestr("../../outside.txt", "x")
+    report = check(zip_path)
+    [fatal] = report.findings
+    assert fatal.rule == "input-unreadable" and "outside its own folder" in fatal.message
+    assert "give the package folder" in fatal.fix
+    assert not (tmp_path.parent / "outside.txt").exists()
+    assert report.status == 2
+
+
+def test_archives_that_cannot_be_read_are_named_with_what_to_do(tmp_path, monkeypatch):
+    broken = tmp_path / "cut.zip"
+    broken.write_bytes(b"PK\x03\x04" + b"\x00" * 40)
+    with pytest.raises(LoadError, match="not a readable zip archive") as error:
+        find_package(broken)
+    assert "unzip it yourself" in str(error.value)
+    assert str(error.value).startswith(str(broken))
+
+    secret = tmp_path / "secret.zip"
+    with zipfile.ZipFile(secret, "w") as zf:
+        zf.writestr("pkg/package.xml", "<package/>")
+    # zipfile writes no encrypted archives: set the flag as an encrypting zip tool does,
+    # in the file's local header and in the central directory
+    data = bytearray(secret.read_bytes())
+    for signature, offset in ((b"PK\x03\x04", 6), (b"PK\x01\x02", 8)):
+        data[data.index(signature) + offset] |= 0x1
+    secret.write_bytes(bytes(data))
+    with pytest.raises(LoadError, match="encrypted"):
+        find_package(secret)
+
+    big = zipped(copy_example(1, tmp_path / "export"), tmp_path / "big.zip")
+    monkeypatch.setattr(archive, "MAX_BYTES", 1000)
+    with pytest.raises(LoadError, match="more than a package needs"):
+        find_package(big)
+
+    seven = tmp_path / "export.7z"
+    seven.write_bytes(b"7z\xbc\xaf\x27\x1c")
+    with pytest.raises(LoadError, match=r"a \.7z archive.*unpack it"):
+        find_package(seven)
+
+
+def test_the_folder_around_one_package_stands_for_it(tmp_path):
+    package = copy_example(3, tmp_path / "Downloads" / "export-2026")
+    assert find_package(tmp_path / "Downloads").root == package.resolve()
+    assert find_package(package / "urdf").root == package.resolve()
+    report = check(package / "urdf")
+    assert report.status == 0 and report.path.endswith("example_3")
+
+
+def test_a_folder_with_several_packages_lists_them(tmp_path, monkeypatch):
+    for n in (1, 3):
+        copy_example(n, tmp_path / "ws" / "src")
+    (tmp_path / "ws" / "src" / ".hidden").mkdir()
+    copy_example(4, tmp_path / "ws" / "src" / ".hidden")
+    monkeypatch.chdir(tmp_path)
+    [fatal] = check("ws").findings
+    assert fatal.rule == "input-missing"
+    assert "2 packages below: src/example_1/, src/example_3/" in fatal.message
+    assert fatal.fix == "give one of them, such as ws/src/example_1"
+
+
+def test_what_is_wrong_inside_a_zip_is_named_through_the_archive(tmp_path):
+    package = copy_example(1, tmp_path / "export")
+    edit(urdf_of(package), "</robot>", "</robot")
+    zip_path = zipped(package, tmp_path / "broken.zip")
+    with pytest.raises(LoadError) as error:
+        find_package(zip_path)
+    assert str(error.value).startswith(f"{zip_path}/example_1/urdf/example_1.urdf:")
+    [fatal] = check(zip_path).findings
+    assert fatal.rule == "xml-syntax" and fatal.file.endswith("broken.zip/example_1/urdf/example_1.urdf")
