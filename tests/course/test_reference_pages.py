@@ -85,12 +85,31 @@ def test_front_matter(name, url):
     assert "math" not in front, name
 
 
-def test_home_page_links_to_the_reference_section():
+def test_home_page_links_to_every_reference_page():
     home = (ROOT / "_pages" / "index.md").read_text()
-    assert "## Reference" in home
-    for url in ("/reference/getting-started/", "/reference/exporter/",
-                "/reference/ros1-to-ros2/", "/reference/glossary/"):
-        assert f"]({url})" in home, url
+    reference = home.split("## Reference", 1)[1]
+    navigation = yaml.safe_load((ROOT / "_data" / "navigation.yml").read_text())
+    urls = [entry["url"] for section in navigation
+            for entry in [section, *section.get("children", [])]
+            if entry.get("url", "").startswith("/reference/")]
+    assert len(urls) == len(list((ROOT / "_pages" / "reference").glob("*.md")))
+    for url in urls:
+        assert f"]({url})" in reference, url
+
+
+def test_what_the_home_page_says_is_not_run_is_what_the_pages_skip():
+    """The home page: the ROS blocks run, and only blocks that open a window or need ROS 2
+    are marked Not run here."""
+    from course.snippets import find_pages
+    home = " ".join((ROOT / "_pages" / "index.md").read_text().split())
+    assert "The ROS commands and nodes run as well, under a real ROS 1 master" in home
+    assert "the few blocks that open a window or need ROS 2 are marked *Not run here*" in home
+    pages = [parse_page(path, ROOT) for path in find_pages(ROOT)]
+    reasons = [(b.location, b.skip) for p in pages for b in p.skipped]
+    assert reasons
+    for location, reason in reasons:
+        assert "window" in reason or "ROS 2" in reason, (location, reason)
+    assert sum(len(p.ros_blocks) for p in pages) >= 10
 
 
 # ---- Python blocks: which run and which are shown only ------------------------------------
