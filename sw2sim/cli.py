@@ -19,6 +19,7 @@ from pathlib import Path
 from . import gl
 
 EXIT_OK, EXIT_ERRORS, EXIT_UNUSABLE = 0, 1, 2
+EXIT_BROKEN_PIPE = 141   # 128 + SIGPIPE: what a shell reports when the reader went away
 
 DESCRIPTION = """\
 From a SolidWorks-exported URDF package to a MuJoCo simulation: check the package
@@ -162,9 +163,17 @@ def main(argv: list[str] | None = None) -> int:
         parser.print_help()
         return EXIT_UNUSABLE
     try:
-        return args.run(args)
+        status = args.run(args)
+        sys.stdout.flush()   # a closed pipe shows here, not in Python's flush at exit
+        return status
     except KeyboardInterrupt:
         return 130
+    except BrokenPipeError:
+        # Whatever read the output stopped early (`sw2sim check PATH | head`): stop quietly,
+        # as other command-line tools do, and keep Python from failing again on the pipe
+        # when it flushes at exit.
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return EXIT_BROKEN_PIPE
     except Exception as exc:  # noqa: BLE001  (a bug in sw2sim: say so plainly, no traceback)
         _say(f"sw2sim {args.command}: unexpected error ({type(exc).__name__}: {exc}). "
              "This is a fault in sw2sim, not necessarily in your package; please report it "

@@ -128,11 +128,14 @@ def find_package(path: str | os.PathLike, urdf: str | None = None) -> Package:
     if path.is_dir():
         candidates = urdf_candidates(path)
         if not candidates:
+            for saved in sorted((path / "urdf").glob("*.[uU][rR][dD][fF].[tT][xX][tT]")):
+                _not_a_urdf(saved)
             raise LoadError(path, "no URDF found; an exported package keeps it in "
                             "urdf/<name>.urdf", kind="missing")
         chosen, because = choose_urdf(path, candidates, name, urdf)
         others = tuple(c for c in candidates if c != chosen)
     else:
+        _not_a_urdf(path)
         chosen = path
     chosen = chosen.resolve()
     expanded = None
@@ -159,6 +162,31 @@ def _unpacked(path: Path) -> Path:
                         fix="unpack it and give the package folder it holds (a .zip is read "
                             "as it is)")
     return path
+
+
+# Files people give instead of the package, by their ending: what each is, and what to give.
+_EXPORT = ("export the assembly with the exporter (Tools > Export as URDF, with the assembly "
+           "open) and give the package folder it writes")
+NOT_URDFS = {
+    (".sldasm", ".sldprt", ".slddrw"): ("a SolidWorks document ({ending}), not an export", _EXPORT),
+    (".step", ".stp", ".iges", ".igs", ".x_t", ".x_b", ".3mf"):
+        ("a CAD exchange file ({ending}), not a URDF package", _EXPORT),
+    (".stl", ".dae", ".obj", ".ply", ".glb", ".gltf"):
+        ("a mesh ({ending}), one part of a package", "give the package folder that holds it (the one "
+                                          "with package.xml, urdf/ and meshes/)"),
+    (".urdf.txt", ".xacro.txt"):
+        ("a URDF saved with .txt added, as Notepad does when the type is Text Documents",
+         "rename it without the .txt (in Explorer, turn on View > File name extensions "
+         "to see it)"),
+}
+
+
+def _not_a_urdf(path: Path) -> None:
+    """Refuse, with what to give instead, a file that by its ending is no URDF."""
+    name = path.name.lower()
+    for endings, (what, fix) in NOT_URDFS.items():
+        if name.endswith(endings):
+            raise LoadError(path, what.format(ending=path.suffix), kind="not-urdf", fix=fix)
 
 
 # How far below a given folder a package is looked for, and how many folders at most.
@@ -232,7 +260,8 @@ def _stem(path: Path) -> str:
 def urdf_candidates(folder: Path) -> list[Path]:
     """The URDFs of a package folder, in urdf/ or at its top, then its xacros where no URDF
     of the same name sits beside them (an expanded URDF is preferred to its source)."""
-    urdfs = sorted((folder / "urdf").glob("*.urdf")) + sorted(folder.glob("*.urdf"))
+    urdfs = sorted((folder / "urdf").glob("*.[uU][rR][dD][fF]")) + sorted(
+        folder.glob("*.[uU][rR][dD][fF]"))
     names = {_stem(u) for u in urdfs}
     xacros = [x for x in sorted((folder / "urdf").glob("*.xacro")) + sorted(folder.glob("*.xacro"))
               if _stem(x) not in names]

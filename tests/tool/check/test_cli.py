@@ -266,3 +266,19 @@ def test_view_on_a_display_that_does_not_work_exits_2_with_a_message(tmp_path):
     assert "no window can open on display :77" in result.stderr
     assert "Traceback" not in result.stderr
     assert not (tmp_path / "MUJOCO_LOG.TXT").exists()
+
+
+def test_a_reader_that_stops_early_ends_the_command_quietly(tmp_path):
+    """`sw2sim check PATH | head -1`: the command stops at the closed pipe with the status a
+    shell gives such a command, and says nothing of a fault."""
+    package = copy_example(3, tmp_path)
+    edit(urdf_of(package), 'effort="', 'effort="-', count=2)   # two findings, two lines
+    read, write = os.pipe()
+    os.close(read)    # the reader is gone before the first line is written
+    try:
+        done = subprocess.run([sys.executable, "-m", "sw2sim", "check", str(package), "--no-sim"],
+                              stdout=write, stderr=subprocess.PIPE, text=True, timeout=60)
+    finally:
+        os.close(write)
+    assert done.returncode == cli.EXIT_BROKEN_PIPE, done.stderr
+    assert done.stderr == ""

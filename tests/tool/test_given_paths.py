@@ -149,3 +149,25 @@ def test_what_is_wrong_inside_a_zip_is_named_through_the_archive(tmp_path):
     assert str(error.value).startswith(f"{zip_path}/example_1/urdf/example_1.urdf:")
     [fatal] = check(zip_path).findings
     assert fatal.rule == "xml-syntax" and fatal.file.endswith("broken.zip/example_1/urdf/example_1.urdf")
+
+
+@pytest.mark.parametrize("name, what", [("Arm_Assembly.SLDASM", "a SolidWorks document"),
+                                        ("base_link.STEP", "a CAD exchange file"),
+                                        ("base_link.STL", "a mesh (.STL)")])
+def test_files_that_are_no_urdf_are_named_with_what_to_give(tmp_path, name, what):
+    given = tmp_path / name
+    given.write_bytes(bytes(range(256)) * 8)
+    [fatal] = check(given).findings
+    assert fatal.rule == "not-urdf" and fatal.message.startswith(what)
+    assert "package folder" in fatal.fix
+
+
+def test_a_urdf_that_notepad_saved_as_text_is_named_and_an_upper_case_one_is_read(tmp_path):
+    package = copy_example(1, tmp_path)
+    urdf = urdf_of(package)
+    urdf.rename(urdf.with_name("example_1.urdf.txt"))
+    [fatal] = check(package).findings
+    assert fatal.rule == "not-urdf" and fatal.file.endswith("urdf/example_1.urdf.txt")
+    assert fatal.fix.startswith("rename it without the .txt")
+    urdf.with_name("example_1.urdf.txt").rename(urdf.with_name("EXAMPLE_1.URDF"))
+    assert find_package(package).urdf.name == "EXAMPLE_1.URDF"
