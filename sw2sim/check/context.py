@@ -45,8 +45,11 @@ rule("xml-doctype", FATAL, "input", "The URDF declares a DOCTYPE or entities",
 rule("not-urdf", FATAL, "input", "The XML is not a URDF",
      symptom="MuJoCo reports that the top-level element is unknown.",
      cause="A different XML file was given (an SDF world, a MuJoCo MJCF, a launch file), "
-           "or the file is a xacro that was never expanded.",
-     fix="Give the exported .urdf; expand xacro files first with `xacro model.urdf.xacro > model.urdf`.")
+           "the file is a xacro that was never expanded, or it is no XML at all: a "
+           "SolidWorks document, a STEP file, a mesh, or a URDF that Notepad saved with "
+           "`.txt` added.",
+     fix="Give the exported package folder or its .urdf; expand xacro files first with "
+         "`xacro model.urdf.xacro > model.urdf`.")
 
 rule("xacro-needs-package", FATAL, "input", "The xacro needs another ROS package",
      symptom="`sw2sim check` stops: the package holds a .xacro, no URDF, and the xacro "
