@@ -8,7 +8,8 @@ as the user would name it, through the archive: `arm.zip/Arm_Assembly/urdf/arm.u
 An archive is refused, with the reason, when it cannot be read, is encrypted, names a
 file outside its own folder (`../`, `/etc/...`, `C:\\...`), or would unpack to more than
 MAX_BYTES or MAX_FILES. Names written with backslashes (PowerShell 5's Compress-Archive)
-are read as folders, and macOS's `__MACOSX/` copies are left out.
+are read as folders, names in a Windows code page are read in the one the URDF agrees
+with, and macOS's `__MACOSX/` copies are left out.
 """
 
 from __future__ import annotations
@@ -91,8 +92,9 @@ def unpack(archive: Path, shown_as: str | None = None) -> Path:
 def _entries(zf: zipfile.ZipFile) -> list[tuple[zipfile.ZipInfo, PurePosixPath]]:
     """The files to unpack with their paths inside the archive, after every check."""
     entries, total = [], 0
+    names = _names(zf)
     for info in zf.infolist():
-        name = info.filename.replace("\\", "/")
+        name = names[info.filename].replace("\\", "/")
         if name.endswith("/") or LEFT_OUT.search(name):
             continue
         path = PurePosixPath(name)
@@ -112,6 +114,41 @@ def _entries(zf: zipfile.ZipFile) -> list[tuple[zipfile.ZipInfo, PurePosixPath]]
                            f"{MAX_BYTES / 1e9:.0f} GB at most)",
                            "unzip the package folder alone and give it", kind="unreadable")
     return entries
+
+
+# The code pages Windows writes the names in a zip in when it does not mark them UTF-8
+# (its OEM code page: 936 on a Chinese Windows, 866 on a Russian one, 850 in western
+# Europe), tried in this order.
+CODE_PAGES = ("utf-8", "cp936", "cp932", "cp949", "cp950", "cp866", "cp850", "cp437")
+
+
+def _names(zf: zipfile.ZipFile) -> dict[str, str]:
+    """Each entry's name, by the name zipfile read. zipfile reads a name that is not
+    marked UTF-8 as code page 437; where that name is not plain ASCII, it is decoded in
+    the first code page that makes it a name the archive's URDFs and xacros use (their
+    text is UTF-8), else as UTF-8 where it is valid UTF-8, else left as read."""
+    names = {info.filename: info.filename for info in zf.infolist()}
+    unmarked = [i for i in zf.infolist() if not i.flag_bits & 0x800 and not i.filename.isascii()]
+    if not unmarked:
+        return names
+    text = ""
+    for info in zf.infolist():
+        if info.filename.lower().endswith((".urdf", ".xacro")) and info.file_size < 20_000_000:
+            text += zf.read(info).decode("utf-8", errors="replace")
+    for info in unmarked:
+        raw = info.filename.encode("cp437")
+        readings = []
+        for code_page in CODE_PAGES:
+            try:
+                readings.append((code_page, raw.decode(code_page)))
+            except UnicodeDecodeError:
+                continue
+        named = [name for _, name in readings
+                 if any(part in text for part in name.replace("\\", "/").split("/")
+                        if not part.isascii())]
+        utf8 = [name for code_page, name in readings if code_page == "utf-8"]
+        names[info.filename] = (named or utf8 or [info.filename])[0]
+    return names
 
 
 def _extract(zf: zipfile.ZipFile, entries, folder: Path) -> None:

@@ -171,3 +171,29 @@ def test_a_urdf_that_notepad_saved_as_text_is_named_and_an_upper_case_one_is_rea
     assert fatal.fix.startswith("rename it without the .txt")
     urdf.with_name("example_1.urdf.txt").rename(urdf.with_name("EXAMPLE_1.URDF"))
     assert find_package(package).urdf.name == "EXAMPLE_1.URDF"
+
+
+@pytest.mark.parametrize("code_page", ["gbk", "cp866", "utf-8"])
+def test_names_a_windows_zip_writes_in_its_code_page_are_read_as_the_urdf_names_them(
+        tmp_path, code_page):
+    """Explorer writes a name in Windows' OEM code page without marking it (GBK on a Chinese
+    Windows, 866 on a Russian one; some tools write UTF-8 unmarked): zipfile reads it as
+    code page 437, and the mesh the URDF names would be missing."""
+    package = copy_example(1, tmp_path / "export")
+    mesh = {"gbk": "底座", "cp866": "основание", "utf-8": "базовая"}[code_page]
+    (package / "meshes" / "base_link.STL").rename(package / "meshes" / f"{mesh}.STL")
+    edit(urdf_of(package), "meshes/base_link.STL", f"meshes/{mesh}.STL", count=2)
+    # zipfile marks every non-ASCII name UTF-8: write a stand-in name of the same length
+    # in bytes, then put the code page's bytes in its place, unmarked, as Explorer does
+    raw = mesh.encode(code_page)
+    stand_in = "x" * len(raw)
+    (package / "meshes" / f"{mesh}.STL").rename(package / "meshes" / f"{stand_in}.STL")
+    zip_path = zipped(package, tmp_path / "export.zip")
+    data = zip_path.read_bytes().replace(f"meshes/{stand_in}.STL".encode(),
+                                         b"meshes/" + raw + b".STL")
+    zip_path.write_bytes(data)
+    with zipfile.ZipFile(zip_path) as zf:
+        assert f"export/meshes/{mesh}.STL" not in zf.namelist(), "zipfile misreads the name"
+    loaded = find_package(zip_path)
+    assert (loaded.root / "meshes" / f"{mesh}.STL").is_file()
+    assert check(zip_path).status == 0
