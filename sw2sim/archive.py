@@ -9,7 +9,9 @@ An archive is refused, with the reason, when it cannot be read, is encrypted, na
 file outside its own folder (`../`, `/etc/...`, `C:\\...`), or would unpack to more than
 MAX_BYTES or MAX_FILES. Names written with backslashes (PowerShell 5's Compress-Archive)
 are read as folders, names in a Windows code page are read in the one the URDF agrees
-with, and macOS's `__MACOSX/` copies are left out.
+with, and macOS's `__MACOSX/` copies are left out. A file keeps the executable mode a zip
+made on Unix gives it; from a zip made on Windows (which has no such mode) a script,
+a file starting with `#!`, comes out executable, as ROS wants its nodes.
 """
 
 from __future__ import annotations
@@ -153,18 +155,32 @@ def _names(zf: zipfile.ZipFile) -> dict[str, str]:
 
 def _extract(zf: zipfile.ZipFile, entries, folder: Path) -> None:
     """Copy the entries' bytes into `folder`, counting what really comes out (an entry
-    may claim a smaller size than it unpacks to)."""
+    may claim a smaller size than it unpacks to), and make executable what runs."""
     written = 0
     for info, path in entries:
         target = folder.joinpath(*path.parts)
         target.parent.mkdir(parents=True, exist_ok=True)
         with zf.open(info) as source, open(target, "wb") as out:
+            first = b""
             while chunk := source.read(1 << 20):
+                first = first or chunk[:2]
                 written += len(chunk)
                 if written > MAX_BYTES:
                     raise ArchiveError(f"the archive unpacks to more than {MAX_BYTES / 1e9:.0f} GB",
                                        "unzip the package folder alone and give it")
                 out.write(chunk)
+        if _executable(info, first):
+            target.chmod(target.stat().st_mode | 0o111)
+
+
+def _executable(info: zipfile.ZipInfo, first: bytes) -> bool:
+    """Whether an unpacked file should run, as roslaunch and rosrun want a node to: the
+    archive says so (a zip made on Unix keeps the file's mode), or, in one made on
+    Windows, which has no such mode, the file starts with `#!` as a script does."""
+    mode = info.external_attr >> 16
+    if info.create_system == 3 and mode:   # Unix
+        return bool(mode & 0o111)
+    return first == b"#!"
 
 
 def shown(path: str | os.PathLike) -> str | None:

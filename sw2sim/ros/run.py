@@ -191,7 +191,9 @@ def run(path: str, launch: str | None = None, duration: float | None = None,
                     say("sw2sim ros: roscore did not start")
                     return 2
                 time.sleep(0.1)
-        say(f"sw2sim ros: {launch_file} on {uri}, MuJoCo standing in for Gazebo")
+        from ..archive import shown
+        say(f"sw2sim ros: {shown(launch_file) or launch_file} on {uri}, MuJoCo standing in "
+            "for Gazebo")
         roslaunch = subprocess.Popen(["roslaunch", "--wait", str(launch_file)], env=env,
                                      start_new_session=True, preexec_fn=with_ctrl_c)
         started.append(roslaunch)

@@ -197,3 +197,22 @@ def test_names_a_windows_zip_writes_in_its_code_page_are_read_as_the_urdf_names_
     loaded = find_package(zip_path)
     assert (loaded.root / "meshes" / f"{mesh}.STL").is_file()
     assert check(zip_path).status == 0
+
+
+def test_scripts_come_out_of_a_zip_executable_as_ros_wants_its_nodes(tmp_path):
+    package = copy_example(3, tmp_path / "export")
+    node = package / "scripts" / "random_setpoints_node.py"
+    assert node.read_bytes().startswith(b"#!")
+    node.chmod(0o755)
+    unix = zipped(package, tmp_path / "unix.zip")          # zipfile keeps the mode, as zip does
+    windows = tmp_path / "windows.zip"                     # Explorer's: no mode at all
+    with zipfile.ZipFile(unix) as source, zipfile.ZipFile(windows, "w") as zf:
+        for info in source.infolist():
+            copy = zipfile.ZipInfo(info.filename, info.date_time)
+            copy.create_system, copy.external_attr = 0, 0x20   # MS-DOS, "archive"
+            zf.writestr(copy, source.read(info))
+    for archive_path in (unix, windows):
+        root = find_package(archive_path).root
+        unpacked = root / "scripts" / "random_setpoints_node.py"
+        assert os.access(unpacked, os.X_OK), archive_path.name
+        assert not os.access(root / "package.xml", os.X_OK), archive_path.name
