@@ -191,6 +191,7 @@ def _not_a_urdf(path: Path) -> None:
 
 # How far below a given folder a package is looked for, and how many folders at most.
 SEARCH_DEPTH, SEARCH_FOLDERS = 3, 2000
+LISTED = 8   # packages named when a folder holds several
 
 
 def _package_folder(path: Path) -> Path:
@@ -212,8 +213,10 @@ def _package_folder(path: Path) -> Path:
         names = [f"{f.relative_to(path).as_posix()}/" for f in found]
         inside = archive.shown(path)
         example = f"{path / names[0]}" if inside is None else None
-        raise LoadError(path, f"no URDF here, but {len(found)} packages below: "
-                        + ", ".join(names), kind="missing",
+        listed = ", ".join(names[:LISTED]) + (f" and {len(names) - LISTED} more"
+                                               if len(names) > LISTED else "")
+        raise LoadError(path, f"no URDF here, but {len(found)} packages below: {listed}",
+                        kind="missing",
                         fix=f"give one of them, such as {example}" if example else
                         "unzip the archive and give one of them")
     return path

@@ -138,6 +138,12 @@ def test_a_folder_with_several_packages_lists_them(tmp_path, monkeypatch):
     assert fatal.rule == "input-missing"
     assert "2 packages below: src/example_1/, src/example_3/" in fatal.message
     assert fatal.fix == "give one of them, such as ws/src/example_1"
+    # a long list is cut short
+    for n in range(10):
+        copy_example(1, tmp_path / "many" / f"copy_{n}")
+    [fatal] = check("many").findings
+    assert "10 packages below: copy_0/example_1/, " in fatal.message
+    assert fatal.message.endswith("copy_7/example_1/ and 2 more")
 
 
 def test_what_is_wrong_inside_a_zip_is_named_through_the_archive(tmp_path):
