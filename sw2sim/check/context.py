@@ -24,12 +24,17 @@ from .repairs import DEFAULT, Options, Repair, repaired
 rule("input-missing", FATAL, "input", "The path does not exist, or holds no URDF",
      symptom="`sw2sim check` stops at once and names the path.",
      cause="A typo in the path, or a folder that is not an exported package: the exporter "
-           "keeps the URDF in `urdf/<name>.urdf`.",
-     fix="Give the package folder (the one holding package.xml) or the .urdf file itself.")
+           "keeps the URDF in `urdf/<name>.urdf`. A folder that holds one package further "
+           "down is read as that package; one that holds several (a workspace's `src/`) "
+           "lists them.",
+     fix="Give the package folder (the one holding package.xml), the .urdf file itself or "
+         "a .zip of the package.")
 rule("input-unreadable", FATAL, "input", "The URDF cannot be read",
      symptom="The file exists but cannot be opened, or it is a folder, or it is empty.",
-     cause="File permissions, a broken link, or an export that was interrupted.",
-     fix="Check the file's permissions, or export the package again.")
+     cause="File permissions, a broken link, or an export that was interrupted; for a .zip, "
+           "an archive that is damaged, encrypted, too large, or names files outside itself.",
+     fix="Check the file's permissions, or export the package again; unzip an archive that "
+         "cannot be read yourself and give the package folder.")
 rule("xml-syntax", FATAL, "input", "The URDF is not well-formed XML",
      symptom="MuJoCo and ROS refuse the file with a parser error.",
      cause="Usually a hand edit: an unclosed tag, a missing quote, `<` or `&` in a value, "
