@@ -74,12 +74,16 @@ def unpack(archive: Path, shown_as: str | None = None) -> Path:
     try:
         with zipfile.ZipFile(archive) as zf:
             entries = _entries(zf)
-            folder = Path(tempfile.mkdtemp(prefix="sw2sim-zip-")).resolve()
-            atexit.register(shutil.rmtree, folder, ignore_errors=True)
+            scratch = Path(tempfile.mkdtemp(prefix="sw2sim-zip-")).resolve()
+            atexit.register(shutil.rmtree, scratch, ignore_errors=True)
+            # named after the archive, as the folder "Extract all" makes: a package zipped
+            # without its folder gets the name it would have once unzipped
+            folder = scratch / (archive.stem or "archive")
+            folder.mkdir()
             try:
                 _extract(zf, entries, folder)
             except BaseException:
-                shutil.rmtree(folder, ignore_errors=True)
+                shutil.rmtree(scratch, ignore_errors=True)
                 raise
     except zipfile.BadZipFile as exc:
         raise ArchiveError(f"not a readable zip archive ({exc})", again) from None

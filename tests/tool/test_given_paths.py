@@ -222,3 +222,21 @@ def test_scripts_come_out_of_a_zip_executable_as_ros_wants_its_nodes(tmp_path):
         unpacked = root / "scripts" / "random_setpoints_node.py"
         assert os.access(unpacked, os.X_OK), archive_path.name
         assert not os.access(root / "package.xml", os.X_OK), archive_path.name
+
+
+def test_a_package_zipped_without_its_folder_is_named_as_unzipping_would_name_it(tmp_path):
+    package = copy_example(1, tmp_path / "export")
+    flat = tmp_path / "my_export.zip"
+    with zipfile.ZipFile(flat, "w") as zf:
+        for path in sorted(package.rglob("*")):
+            if path.is_file():
+                zf.write(path, path.relative_to(package).as_posix())
+    report = check(flat)
+    [folder_name] = [f for f in report.findings if f.rule == "package-folder-name"]
+    assert '"my_export"' in folder_name.message, "the folder Extract all would make"
+    assert folder_name.file == f"{flat}/package.xml"
+
+    empty = tmp_path / "empty.zip"
+    zipfile.ZipFile(empty, "w").close()
+    [fatal] = check(empty).findings
+    assert fatal.rule == "input-missing" and fatal.file == str(empty)
