@@ -30,7 +30,7 @@ MAX_FILES = 20_000
 OTHER_ARCHIVES = (".7z", ".rar", ".tar", ".tar.gz", ".tgz", ".tar.xz", ".tar.bz2", ".gz")
 LEFT_OUT = re.compile(r"(^|/)(__MACOSX/|\.DS_Store$|Thumbs\.db$|desktop\.ini$)", re.IGNORECASE)
 
-_unpacked: dict[Path, Path] = {}   # the archive (resolved) -> the folder it unpacked to
+_unpacked: dict[tuple, Path] = {}  # the archive (path, time, size) -> the folder it unpacked to
 _shown: dict[Path, str] = {}       # that folder -> the archive as the user named it
 
 
@@ -65,9 +65,10 @@ def other_archive(path: Path) -> str | None:
 
 
 def unpack(archive: Path, shown_as: str | None = None) -> Path:
-    """The folder holding the archive's files (unpacked once per process); ArchiveError
-    when it cannot or should not be unpacked."""
-    key = archive.resolve()
+    """The folder holding the archive's files (unpacked once per process, and again if
+    the archive changes); ArchiveError when it cannot or should not be unpacked."""
+    stat = archive.stat()
+    key = (archive.resolve(), stat.st_mtime_ns, stat.st_size)
     if key in _unpacked:
         return _unpacked[key]
     again = "unzip it yourself and give the package folder, or make the archive again"

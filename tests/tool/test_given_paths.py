@@ -240,3 +240,15 @@ def test_a_package_zipped_without_its_folder_is_named_as_unzipping_would_name_it
     zipfile.ZipFile(empty, "w").close()
     [fatal] = check(empty).findings
     assert fatal.rule == "input-missing" and fatal.file == str(empty)
+
+
+def test_a_zip_that_changes_is_read_again(tmp_path):
+    package = copy_example(1, tmp_path / "export")
+    zip_path = zipped(package, tmp_path / "export.zip")
+    first = find_package(zip_path)
+    assert find_package(zip_path).root == first.root, "unpacked once"
+    edit(urdf_of(package), 'name="example_1"', 'name="renamed"')
+    zipped(package, zip_path)
+    os.utime(zip_path, ns=(0, first.root.stat().st_mtime_ns + 10**9))
+    again = find_package(zip_path)
+    assert again.root != first.root and again.robot.get("name") == "renamed"
