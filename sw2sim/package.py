@@ -1,7 +1,8 @@
 """A package in the SolidWorks-to-URDF exporter's layout, found and read once.
 
 `find_package` locates the URDF and the package root from a package folder or a .urdf
-file, reads package.xml and the URDF safely (`sw2sim.xmlsafe`), and returns a `Package`:
+file (or from a .zip, a folder around the package, its urdf/ folder: `sw2sim.locate`),
+reads package.xml and the URDF safely (`sw2sim.xmlsafe`), and returns a `Package`:
 what every command needs to know about the package, read from disk once. The functions
 that take a package (`load_package`, `world_fixed`, the `ros_control` readers,
 `add_actuators`, `convert`, `check`) accept a path or a Package; `as_package` is how.
@@ -20,25 +21,8 @@ from pathlib import Path
 from lxml import etree
 
 from . import xmlsafe
-
-
-class LoadError(Exception):
-    """A package that cannot be loaded; the message names the file (and line) and the fix."""
-
-    # What kind of problem it is, for tools that sort them (sw2sim check): "invalid" (the
-    # default), "missing" (no such file), "unreadable" (a pipe, a folder, too large, empty),
-    # "syntax" (not well-formed XML), "doctype" (a URDF declaring a DOCTYPE), "not-urdf"
-    # (another kind of XML), "unsafe" (a path leading outside the package). `fix` is what
-    # to do, when the message does not say it already; `detail` is the problem in the words
-    # `sw2sim check` reports it with (the message, unless it is given).
-    def __init__(self, file: Path | str, message: str, line: int | None = None, *,
-                 kind: str = "invalid", fix: str | None = None, detail: str | None = None):
-        self.file, self.line, self.message, self.kind = str(file), line, message, kind
-        self.fix, self.detail = fix, message if detail is None else detail
-        from .archive import shown    # a file of an unpacked .zip, named through the archive
-        named = shown(self.file) or self.file
-        where = f"{named}:{line}" if line else named
-        super().__init__(f"{where}: {message}" + (f"; {fix}" if fix else ""))
+from .errors import LoadError
+from .locate import package_path, saved_as_text, urdf_candidates, urdf_stem
 
 
 @dataclass(frozen=True, eq=False)
@@ -110,7 +94,7 @@ def find_package(path: str | os.PathLike, urdf: str | None = None) -> Package:
     if not path.exists():
         raise LoadError(path, "no such file or folder; give a package folder or a .urdf file",
                         kind="missing")
-    path = _package_folder(_unpacked(path))
+    path = package_path(path)   # a zip, a folder around the package, a stray file
     root = path if path.is_dir() else (
         path.parent.parent if path.parent.name == "urdf" else path.parent)
     name = root.name
@@ -128,14 +112,12 @@ def find_package(path: str | os.PathLike, urdf: str | None = None) -> Package:
     if path.is_dir():
         candidates = urdf_candidates(path)
         if not candidates:
-            for saved in sorted((path / "urdf").glob("*.[uU][rR][dD][fF].[tT][xX][tT]")):
-                _not_a_urdf(saved)
+            saved_as_text(path)
             raise LoadError(path, "no URDF found; an exported package keeps it in "
                             "urdf/<name>.urdf", kind="missing")
         chosen, because = choose_urdf(path, candidates, name, urdf)
         others = tuple(c for c in candidates if c != chosen)
     else:
-        _not_a_urdf(path)
         chosen = path
     chosen = chosen.resolve()
     expanded = None
@@ -148,127 +130,8 @@ def find_package(path: str | os.PathLike, urdf: str | None = None) -> Package:
                    other_urdfs=others, expanded_from=expanded)
 
 
-def _unpacked(path: Path) -> Path:
-    """The folder a .zip archive unpacks to (sw2sim.archive); any other path as it is."""
-    from . import archive
-    if archive.is_zip(path):
-        try:
-            return archive.unpack(path, shown_as=str(path))
-        except archive.ArchiveError as exc:
-            raise LoadError(path, exc.message, kind=exc.kind, fix=exc.fix) from None
-    kind = archive.other_archive(path)
-    if kind:
-        raise LoadError(path, f"a {kind} archive, which is not read here", kind="unreadable",
-                        fix="unpack it and give the package folder it holds (a .zip is read "
-                            "as it is)")
-    return path
-
-
-# Files people give instead of the package, by their ending: what each is, and what to give.
-_EXPORT = ("export the assembly with the exporter (Tools > Export as URDF, with the assembly "
-           "open) and give the package folder it writes")
-NOT_URDFS = {
-    (".sldasm", ".sldprt", ".slddrw"): ("a SolidWorks document ({ending}), not an export", _EXPORT),
-    (".step", ".stp", ".iges", ".igs", ".x_t", ".x_b", ".3mf"):
-        ("a CAD exchange file ({ending}), not a URDF package", _EXPORT),
-    (".stl", ".dae", ".obj", ".ply", ".glb", ".gltf"):
-        ("a mesh ({ending}), one part of a package", "give the package folder that holds it (the one "
-                                          "with package.xml, urdf/ and meshes/)"),
-    (".urdf.txt", ".xacro.txt"):
-        ("a URDF saved with .txt added, as Notepad does when the type is Text Documents",
-         "rename it without the .txt (in Explorer, turn on View > File name extensions "
-         "to see it)"),
-}
-
-
-def _not_a_urdf(path: Path) -> None:
-    """Refuse, with what to give instead, a file that by its ending is no URDF."""
-    name = path.name.lower()
-    for endings, (what, fix) in NOT_URDFS.items():
-        if name.endswith(endings):
-            raise LoadError(path, what.format(ending=path.suffix), kind="not-urdf", fix=fix)
-
-
-# How far below a given folder a package is looked for, and how many folders at most.
-SEARCH_DEPTH, SEARCH_FOLDERS = 3, 2000
-LISTED = 8   # packages named when a folder holds several
-
-
-def _package_folder(path: Path) -> Path:
-    """The package a folder stands for. A package's `urdf/` folder stands for the package.
-    A folder without package.xml or a URDF of its own that holds exactly one package up to
-    SEARCH_DEPTH below (the folder a zip or a download wraps around an export) stands for
-    that package; one that holds several is refused with their list."""
-    if not path.is_dir() or (path / "package.xml").is_file():
-        return path
-    if path.name.lower() == "urdf" and (path.parent / "package.xml").is_file():
-        return path.parent
-    if urdf_candidates(path):
-        return path
-    found = _packages_below(path)
-    if len(found) == 1:
-        return found[0]
-    if found:
-        from . import archive
-        names = [f"{f.relative_to(path).as_posix()}/" for f in found]
-        inside = archive.shown(path)
-        example = f"{path / names[0]}" if inside is None else None
-        listed = ", ".join(names[:LISTED]) + (f" and {len(names) - LISTED} more"
-                                               if len(names) > LISTED else "")
-        raise LoadError(path, f"no URDF here, but {len(found)} packages below: {listed}",
-                        kind="missing",
-                        fix=f"give one of them, such as {example}" if example else
-                        "unzip the archive and give one of them")
-    return path
-
-
-def _packages_below(top: Path) -> list[Path]:
-    """The package folders under `top` (holding package.xml, or a URDF where a package keeps
-    it), nearest first; not below a package, not in hidden folders or `__MACOSX`."""
-    found, level, seen = [], [top], 0
-    for _ in range(SEARCH_DEPTH):
-        below = []
-        for folder in level:
-            try:
-                children = sorted(c for c in folder.iterdir() if c.is_dir() and not c.is_symlink())
-            except OSError:
-                continue
-            for child in children:
-                seen += 1
-                if seen > SEARCH_FOLDERS:
-                    return found
-                if child.name.startswith(".") or child.name == "__MACOSX":
-                    continue
-                if (child / "package.xml").is_file() or urdf_candidates(child):
-                    found.append(child)
-                else:
-                    below.append(child)
-        level = below
-    return found
-
-
 def _is_xacro(path: Path) -> bool:
     return path.suffix.lower() == ".xacro"
-
-
-def _stem(path: Path) -> str:
-    """A URDF's robot name from its file name: robot.urdf, robot.urdf.xacro, robot.xacro."""
-    name = path.name
-    for suffix in (".xacro", ".urdf"):
-        if name.lower().endswith(suffix):
-            name = name[:-len(suffix)]
-    return name
-
-
-def urdf_candidates(folder: Path) -> list[Path]:
-    """The URDFs of a package folder, in urdf/ or at its top, then its xacros where no URDF
-    of the same name sits beside them (an expanded URDF is preferred to its source)."""
-    urdfs = sorted((folder / "urdf").glob("*.[uU][rR][dD][fF]")) + sorted(
-        folder.glob("*.[uU][rR][dD][fF]"))
-    names = {_stem(u) for u in urdfs}
-    xacros = [x for x in sorted((folder / "urdf").glob("*.xacro")) + sorted(folder.glob("*.xacro"))
-              if _stem(x) not in names]
-    return urdfs + xacros
 
 
 def choose_urdf(folder: Path, candidates: list[Path], package: str,
@@ -277,7 +140,7 @@ def choose_urdf(folder: Path, candidates: list[Path], package: str,
     (package.xml's <name>), else the one the launch files load, else the one named like the
     folder, else the first by name."""
     if wanted:
-        hits = [c for c in candidates if wanted in (c.name, _stem(c)) or
+        hits = [c for c in candidates if wanted in (c.name, urdf_stem(c)) or
                 c.relative_to(folder).as_posix() == wanted.replace("\\", "/")]
         if not hits:
             listed = ", ".join(c.relative_to(folder).as_posix() for c in candidates)
@@ -287,13 +150,13 @@ def choose_urdf(folder: Path, candidates: list[Path], package: str,
     if len(candidates) == 1:
         return candidates[0], ""
     for c in candidates:
-        if _stem(c) == package:
+        if urdf_stem(c) == package:
             return c, f'named after the package ("{package}" in package.xml)'
     launched = _launched(folder, candidates)
     if launched is not None:
         return launched
     for c in candidates:
-        if _stem(c) == folder.name:
+        if urdf_stem(c) == folder.name:
             return c, "named after the folder"
     return candidates[0], "the first by name"
 
@@ -323,7 +186,7 @@ def _read_xacro(xacro_file: Path, root: Path, name: str) -> etree._Element:
                         f"($(find {exc.package})), which only a ROS workspace can provide",
                         kind="xacro-package",
                         fix=f"expand it where {exc.package} is installed (`xacro "
-                            f"{xacro_file.name} > {_stem(xacro_file)}.urdf`) and give the "
+                            f"{xacro_file.name} > {urdf_stem(xacro_file)}.urdf`) and give the "
                             "URDF, or copy what it includes into this package") from None
     except ExpandError as exc:
         raise LoadError(xacro_file, f"xacro cannot expand the file: {exc}", kind="xacro",
