@@ -388,7 +388,7 @@ class World:
             try:
                 said = self.spawn(req.model_xml, req.robot_namespace)
             except Exception as exc:  # noqa: BLE001  (the caller gets the reason)
-                return SpawnModelResponse(success=False, status_message=str(exc))
+                return SpawnModelResponse(success=False, status_message=why_not_spawned(exc))
             return SpawnModelResponse(success=True, status_message=said)
 
         def apply(req):
@@ -447,6 +447,14 @@ class World:
         rospy.Service("/gazebo/unpause_physics", Empty, unpause)
         rospy.Service("/gazebo/reset_simulation", Empty, reset)
         rospy.Service("/gazebo/reset_world", Empty, reset)
+
+
+def why_not_spawned(exc: Exception) -> str:
+    """What `spawn_model` prints when the simulation cannot load the URDF: the reason on
+    one line of the launch's screen (MuJoCo's messages take two), and where to see every
+    problem of the package at once."""
+    reason = " ".join(str(exc).split())
+    return f"{reason} (`sw2sim check` on the package lists every problem, each with its fix)"
 
 
 def main(argv: list[str] | None = None) -> int:
