@@ -97,7 +97,8 @@ LISTED = 8   # packages named when a folder holds several
 
 
 def _package_folder(path: Path) -> Path:
-    """The package a folder stands for. A package's `urdf/` folder stands for the package.
+    """The package a folder stands for. A package's `urdf/` folder, or another of its
+    folders that holds no package, stands for the package.
     A folder without package.xml or a URDF of its own that holds exactly one package up to
     SEARCH_DEPTH below (the folder a zip or a download wraps around an export) stands for
     that package; one that holds several is refused with their list."""
@@ -108,6 +109,8 @@ def _package_folder(path: Path) -> Path:
     if urdf_candidates(path):
         return path
     found = _packages_below(path)
+    if not found and (path.parent / "package.xml").is_file():
+        return path.parent          # a package's meshes/, launch/ or config/ folder
     if len(found) == 1:
         return found[0]
     if found:

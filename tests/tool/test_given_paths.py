@@ -123,7 +123,8 @@ def test_archives_that_cannot_be_read_are_named_with_what_to_do(tmp_path, monkey
 def test_the_folder_around_one_package_stands_for_it(tmp_path):
     package = copy_example(3, tmp_path / "Downloads" / "export-2026")
     assert find_package(tmp_path / "Downloads").root == package.resolve()
-    assert find_package(package / "urdf").root == package.resolve()
+    for inside in ("urdf", "meshes", "launch", "config"):
+        assert find_package(package / inside).root == package.resolve(), inside
     report = check(package / "urdf")
     assert report.status == 0 and report.path.endswith("example_3")
 
