@@ -198,3 +198,11 @@ def shown(path: str | os.PathLike) -> str | None:
         if folder in path.parents:
             return f"{archive}/{path.relative_to(folder).as_posix()}"
     return None
+
+
+def discard() -> None:
+    """Remove every folder unpacked so far (their paths must not be used after this)."""
+    for folder in list(_shown):
+        shutil.rmtree(folder.parent, ignore_errors=True)
+    _unpacked.clear()
+    _shown.clear()

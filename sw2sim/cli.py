@@ -58,10 +58,14 @@ ending with "Convert repairs it: ..." where `sw2sim convert` would repair it in
 the model it writes, followed by a summary. Exit status: 0 no errors (warnings allowed), 1 errors,
 2 the input cannot be used (missing path, not XML, not a URDF).
 
+Several PATHs are checked one after the other, each with its own summary, then a
+line for them all; the exit status is the worst of theirs, and --json prints a list.
+
 examples:
   sw2sim check examples/example_4
   sw2sim check my_robot --no-sim
   sw2sim check my_robot --json | python -m json.tool
+  sw2sim check submissions/*.zip --no-sim
 """
 
 COMPARE_HELP = """\
@@ -191,8 +195,9 @@ def _parser() -> argparse.ArgumentParser:
 
     check = commands.add_parser("check", help="list what is wrong with a package, with fixes",
                                 description=CHECK_HELP, formatter_class=raw)
-    check.add_argument("path", metavar="PATH",
-                       help="package folder, .urdf file or .zip of the package")
+    check.add_argument("path", metavar="PATH", nargs="+",
+                       help="package folder, .urdf file or .zip of the package (several: each "
+                            "is checked in turn)")
     check.add_argument("--urdf", metavar="NAME", help="which URDF to read, where the package "
                          "holds several (its file name)")
     check.add_argument("--json", action="store_true", help="print the report as JSON")
@@ -311,10 +316,30 @@ def _say(message: str) -> None:
 
 # -- check -----------------------------------------------------------------------------
 def _check(args) -> int:
+    from . import archive
     from .check import check
-    report = check(args.path, stability=not args.no_sim, urdf=args.urdf)
-    print(report.to_json() if args.json else report.format())
-    return report.status
+    if args.urdf and len(args.path) > 1:
+        _say("sw2sim check: --urdf picks a URDF of one package; give one PATH with it")
+        return EXIT_UNUSABLE
+    reports = []
+    for path in args.path:
+        reports.append(check(path, stability=not args.no_sim, urdf=args.urdf))
+        archive.discard()   # a class's worth of zips needs no disk for all of them at once
+        if not args.json:
+            print(("\n" if len(reports) > 1 else "") + reports[-1].format(), flush=True)
+    if args.json:
+        print(reports[0].to_json() if len(reports) == 1 else
+              "[\n" + ",\n".join(r.to_json() for r in reports) + "\n]")
+    elif len(reports) > 1:
+        print("\n" + _checked(reports))
+    return max(r.status for r in reports)
+
+
+def _checked(reports) -> str:
+    """The line that sums up the check of several packages."""
+    counts = {status: sum(r.status == status for r in reports) for status in (0, 1, 2)}
+    return (f"{len(reports)} packages checked: {counts[0]} without errors, {counts[1]} with "
+            f"errors, {counts[2]} that could not be used")
 
 
 # -- compare ---------------------------------------------------------------------------

@@ -282,3 +282,35 @@ def test_a_reader_that_stops_early_ends_the_command_quietly(tmp_path):
         os.close(write)
     assert done.returncode == cli.EXIT_BROKEN_PIPE, done.stderr
     assert done.stderr == ""
+
+
+def test_several_packages_are_checked_in_turn_with_a_line_for_them_all(tmp_path, capsys,
+                                                                      monkeypatch):
+    """`sw2sim check submissions/*.zip`: each its report, then one line; the worst status."""
+    import tempfile
+    import zipfile
+    monkeypatch.setattr(tempfile, "tempdir", str(tmp_path / "tmp"))
+    (tmp_path / "tmp").mkdir()
+    sound = copy_example(4, tmp_path / "a")
+    broken = copy_example(3, tmp_path / "b")
+    edit(urdf_of(broken), 'effort="', 'effort="-')
+    zipped = tmp_path / "student.zip"
+    with zipfile.ZipFile(zipped, "w") as zf:
+        for path in sorted(sound.rglob("*")):
+            if path.is_file():
+                zf.write(path, path.relative_to(sound.parent).as_posix())
+    status, out, _ = run(capsys, "check", str(sound), str(broken), str(zipped),
+                         str(tmp_path / "missing"), "--no-sim")
+    assert status == 2, "the worst of 0, 1, 0 and 2"
+    summaries = [line for line in out.splitlines() if re.search(r": \d+ error\(s\), ", line)]
+    assert len(summaries) == 4
+    assert out.rstrip().endswith("4 packages checked: 2 without errors, 1 with errors, "
+                                 "1 that could not be used")
+    assert list((tmp_path / "tmp").iterdir()) == [], "each unpacked zip goes after its check"
+
+    status, out, _ = run(capsys, "check", str(sound), str(broken), "--json", "--no-sim")
+    reports = json.loads(out)
+    assert [r["status"] for r in reports] == [0, 1] and status == 1
+
+    status, _, err = run(capsys, "check", str(sound), str(broken), "--urdf", "example_3.urdf")
+    assert status == 2 and "give one PATH with it" in err
