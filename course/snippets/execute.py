@@ -56,7 +56,11 @@ PRELOAD = (
 # "0" (or "no", "false", "off"): every page in a plain subprocess; "1": wait for the server.
 FORK_VARIABLE = "COURSE_SNIPPETS_FORK"
 # Environment variables that change from test to test but not what the server imports.
-VOLATILE = frozenset({"PYTEST_CURRENT_TEST"})
+# Where a process makes its temporary files (tempfile.gettempdir reads them in this order).
+TEMP_VARIABLES = ("TMPDIR", "TEMP", "TMP")
+# Not part of a fork server's identity: what changes from test to test, and each page's
+# temporary folder.
+VOLATILE = frozenset({"PYTEST_CURRENT_TEST", *TEMP_VARIABLES})
 # Time between the child's own stack dump and the parent's kill on a timeout.
 DUMP_GRACE = 1.0
 # Interpreter start-up may be slow on a busy machine: never hold it to a tiny block limit.
@@ -98,6 +102,8 @@ class PageResult:
     seconds: float = 0.0
     # What each block of `ran` printed, stdout and stderr as they came (course/snippets/outputs.py)
     outputs: list[str] = field(default_factory=list)
+    # The page's temporary folder, as its process saw it (removed with what the page put there)
+    temp: str | None = None
 
     @property
     def ok(self) -> bool:
@@ -151,6 +157,12 @@ def run_page(page: Page, root: Path, timeout: float | None = None, *, fork: bool
     began = time.monotonic()
     # Windows cannot delete a file a leftover process still has open: leave it to the system.
     with tempfile.TemporaryDirectory(prefix="snippets-", ignore_cleanup_errors=WINDOWS) as tmp:
+        # The page's own temporary folder: what its blocks make there (a scratch copy with
+        # tempfile.mkdtemp, an unpacked zip) goes when the page is done, as the reader's
+        # system would clear it in time.
+        temp = Path(tmp, "tmp")
+        temp.mkdir()
+        result.temp = str(temp)
         job = Path(tmp, "job.json")
         job.write_text(
             json.dumps(
@@ -167,7 +179,7 @@ def run_page(page: Page, root: Path, timeout: float | None = None, *, fork: bool
         with open(output, "ab") as sink:
             read_fd, write_fd = os.pipe()
             try:
-                proc = _start(job, root, write_fd, sink, fork)
+                proc = _start(job, root, write_fd, sink, fork, temp)
             finally:
                 os.close(write_fd)
             reader = _PipeReader(read_fd)
@@ -185,10 +197,13 @@ def run_page(page: Page, root: Path, timeout: float | None = None, *, fork: bool
 Process = Union["subprocess.Popen[bytes]", ForkedProcess]
 
 
-def _start(job: Path, root: Path, write_fd: int, sink: Any, fork: bool | None) -> Process:
-    """The page's process, forked by the server or else a plain subprocess."""
+def _start(job: Path, root: Path, write_fd: int, sink: Any, fork: bool | None,
+           temp: Path) -> Process:
+    """The page's process, forked by the server or else a plain subprocess, with `temp` as
+    its temporary folder."""
     env = child_env()
     server = _server(root, env, fork)
+    env.update(dict.fromkeys(TEMP_VARIABLES, str(temp)))
     if server is not None:
         try:
             return server.start(job, root, env, write_fd, sink.fileno())

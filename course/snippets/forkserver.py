@@ -356,6 +356,8 @@ class _Preloaded:
         env: dict[str, str] = request["env"]
         os.environ.clear()
         os.environ.update(env)
+        import tempfile
+        tempfile.tempdir = None   # found again, from this page's TMPDIR, at its first use
         sys.path[:] = self.path
         warnings.filters[:] = self.filters
         _filters_mutated()

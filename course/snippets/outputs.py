@@ -74,13 +74,16 @@ def _folder_pattern(folder: str) -> re.Pattern[str]:
     return re.compile(re.escape(folder.rstrip("/")) + r"(?:(?P<inside>/)|(?![\w.-]))")
 
 
-def normalise(text: str, root: Path) -> str:
+def normalise(text: str, root: Path, temp: str | None = None) -> str:
     """What a block printed, with what differs between machines and runs made the same:
     paths inside the repository relative to it (the blocks run in its root), the home
-    folder as `~`, the temporary folder as `/tmp`, wall-clock times as `…`."""
+    folder as `~`, the temporary folder (the page's own, `temp`, where it had one) as
+    `/tmp`, wall-clock times as `…`."""
     text = text.replace("\r\n", "\n")
     folders = [(str(root.resolve()), ".", ""), (str(Path.home()), "~", "~/"),
                (tempfile.gettempdir(), "/tmp", "/tmp/")]
+    if temp:
+        folders.append((temp, "/tmp", "/tmp/"))
     # The longest first: the repository may be inside the home or the temporary folder.
     for folder, alone, prefix in sorted(folders, key=lambda f: -len(f[0])):
         if folder not in ("", "/") and folder != alone:
@@ -93,7 +96,8 @@ def normalise(text: str, root: Path) -> str:
 def entries(page: Page, result: PageResult, root: Path) -> list[dict[str, Any]]:
     """Every python block of the page in page order, with what it printed (None: not run).
     `result` is a successful run of the page."""
-    printed = {b.line: normalise(text, root) for b, text in zip(result.ran, result.outputs)}
+    printed = {b.line: normalise(text, root, result.temp)
+               for b, text in zip(result.ran, result.outputs)}
     return [{"code": first_line(b.code), "output": printed.get(b.line)} for b in page.blocks]
 
 

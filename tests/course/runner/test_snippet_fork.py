@@ -14,6 +14,7 @@ import pytest
 from course.snippets import format_failure, parse_page, run_page
 from course.snippets import execute
 from course.snippets.forkserver import AVAILABLE
+from course.snippets.outputs import entries
 
 from repository import ROOT
 
@@ -68,7 +69,12 @@ def test_forked_page_imports_as_a_fresh_interpreter(tmp_path):
         forked, plain = (json.loads(Path(f"{out}{mode}.{i}").read_text()) for mode in ("forked", "plain"))
         assert set(forked["modules"]) - set(plain["modules"]) == set(), step
         assert set(plain["modules"]) - set(forked["modules"]) == set(), step
+        # the same but for each page's own temporary folder
+        own = {name: (forked["env"].pop(name), plain["env"].pop(name))
+               for name in execute.TEMP_VARIABLES}
         assert forked["env"] == plain["env"], step
+        assert all(f.endswith("/tmp") and p.endswith("/tmp") and f != p
+                   for f, p in own.values()), own
         assert forked["filters"] == plain["filters"], step
     assert "numpy" not in json.loads(Path(f"{out}forked.0").read_text())["modules"]
 
@@ -112,6 +118,27 @@ def test_process_group_is_killed_when_the_page_ends(tmp_path, fork):
     result = run_page(page, ROOT, fork=fork)
     assert "RuntimeError: failed with a process" in result.failure.headline
     assert gone(int(pid_file.read_text()))
+
+
+@pytest.mark.parametrize("fork", [True, False], ids=["forked", "plain"])
+def test_what_a_page_puts_in_its_temporary_folder_goes_with_it(tmp_path, fork):
+    """Each page gets a temporary folder of its own (the pages make scratch copies with
+    tempfile.mkdtemp, and sw2sim unpacks zips there), removed when the page is done; a
+    path inside it prints as one inside /tmp."""
+    seen = tmp_path / "seen.txt"
+    code = ("import tempfile\n"
+            "scratch = tempfile.mkdtemp(prefix='page-scratch-')\n"
+            f"open({str(seen)!r}, 'w').write(scratch)\n"
+            "print(scratch)")
+    results = [run_page(parse_page(page_file(tmp_path, code), ROOT), ROOT, fork=fork)
+               for _ in range(2)]
+    assert all(r.ok for r in results), [r.failure for r in results]
+    scratch = Path(seen.read_text())
+    assert str(scratch.parent) == results[-1].temp, "in the page's own folder"
+    assert not scratch.exists(), "removed with the page"
+    assert results[0].temp != results[1].temp, "a folder of its own for each page"
+    [printed] = entries(results[-1].page, results[-1], ROOT)
+    assert printed["output"].startswith("/tmp/page-scratch-")
 
 
 def test_environment_variable_forces_a_plain_process(tmp_path, monkeypatch):
