@@ -378,7 +378,9 @@ def test_writing_a_lesson_describes_the_practice_registry():
     assert ".ALUMINIUM.density" in (ROOT / "tests" / "course" / "test_examples.py").read_text()
 
 
-def test_writing_a_lesson_shows_the_runner_report_it_prints():
+def test_writing_a_lesson_shows_the_runner_report_it_prints(tmp_path, monkeypatch):
+    import tempfile
+    monkeypatch.setattr(tempfile, "tempdir", str(tmp_path))   # where the block's mkdtemp goes
     text = page("07-writing-a-lesson.md")
     (block,) = [b for b in parse_page(PAGES / "07-writing-a-lesson.md", ROOT).runnable
                 if "format_failure" in b.code]

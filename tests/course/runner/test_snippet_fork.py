@@ -184,7 +184,11 @@ def test_no_process_left_when_the_owner_is_done(tmp_path, how):
     pid_file = tmp_path / "page.pid"
     hung.write_text(f"```python\nimport os, time\nopen({str(pid_file)!r}, 'w').write(str(os.getpid()))\ntime.sleep(60)\n```\n")
     command = [sys.executable, "-c", OWNER, str(quick), str(tmp_path), "hang" if how == "is killed" else "exit", str(hung)]
-    owner = subprocess.Popen(command, cwd=ROOT, stdout=subprocess.PIPE, text=True)
+    # the killed owner leaves its page's folder behind: in the test's folder, not /tmp
+    scratch = tmp_path / "tmp"
+    scratch.mkdir()
+    env = {**os.environ, "TMPDIR": str(scratch)}
+    owner = subprocess.Popen(command, cwd=ROOT, stdout=subprocess.PIPE, text=True, env=env)
     try:
         server = int(owner.stdout.readline())
         if how == "is killed":
