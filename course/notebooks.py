@@ -20,6 +20,7 @@ other change runs the notebook again.
 from __future__ import annotations
 
 import json
+import os
 import re
 import sys
 import tempfile
@@ -335,10 +336,16 @@ def execute(nb: NotebookNode, timeout: float, folder: Path = FOLDER) -> Notebook
     folder.mkdir(exist_ok=True)
     # A kernel on this machine only: local sockets, one folder of them per kernel, rather
     # than unencrypted TCP.
+    # Its temporary folder goes with it too: what the lessons make there (scratch copies,
+    # unpacked zips) does not pile up in the machine's at every run.
     with tempfile.TemporaryDirectory(prefix="kernel-") as sockets:
         local = Config(KernelManager={"transport": "ipc", "ip": f"{sockets}/ipc"})
+        temp = Path(sockets, "tmp")
+        temp.mkdir()
+        env = {**os.environ, **dict.fromkeys(("TMPDIR", "TEMP", "TMP"), str(temp))}
         NotebookClient(nb, kernel_name=KERNEL["name"], timeout=timeout, record_timing=False,
-                       config=local, resources={"metadata": {"path": str(folder)}}).execute()
+                       config=local, resources={"metadata": {"path": str(folder)}}
+                       ).execute(env=env)
     for cell in nb.cells:
         # The setup cell prints this machine's folder: not something to publish.
         if "setup" in cell.metadata.get("tags", []):
