@@ -44,10 +44,20 @@ def urdf_candidates(folder: Path) -> list[Path]:
     return urdfs + xacros
 
 
-def saved_as_text(folder: Path) -> None:
-    """In a package folder without a URDF: refuse, with the fix, a URDF saved as text."""
+def no_urdf(folder: Path) -> None:
+    """In a folder without a URDF, what it holds instead, with the fix: a URDF saved as
+    text, or SolidWorks documents (a Pack and Go folder or zip, sent instead of an export)."""
     for saved in sorted((folder / "urdf").glob("*.[uU][rR][dD][fF].[tT][xX][tT]")):
         _not_a_urdf(saved)
+    documents = [p for depth in ("*", "*/*", "*/*/*") for p in folder.glob(depth)
+                 if p.suffix.lower() in (".sldasm", ".sldprt") and p.is_file()]
+    if documents:
+        assemblies = sum(p.suffix.lower() == ".sldasm" for p in documents)
+        parts = len(documents) - assemblies
+        counted = (f"{assemblies} assembl{'y' if assemblies == 1 else 'ies'}, "
+                   f"{parts} part{'' if parts == 1 else 's'}")
+        raise LoadError(folder, f"SolidWorks documents ({counted}), not an exported package",
+                        kind="not-urdf", fix=_EXPORT)
 
 
 def _unpacked(path: Path) -> Path:

@@ -22,7 +22,7 @@ from lxml import etree
 
 from . import xmlsafe
 from .errors import LoadError
-from .locate import package_path, saved_as_text, urdf_candidates, urdf_stem
+from .locate import no_urdf, package_path, urdf_candidates, urdf_stem
 
 
 @dataclass(frozen=True, eq=False)
@@ -112,7 +112,7 @@ def find_package(path: str | os.PathLike, urdf: str | None = None) -> Package:
     if path.is_dir():
         candidates = urdf_candidates(path)
         if not candidates:
-            saved_as_text(path)
+            no_urdf(path)
             raise LoadError(path, "no URDF found; an exported package keeps it in "
                             "urdf/<name>.urdf", kind="missing")
         chosen, because = choose_urdf(path, candidates, name, urdf)

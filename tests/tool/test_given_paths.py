@@ -253,3 +253,17 @@ def test_a_zip_that_changes_is_read_again(tmp_path):
     os.utime(zip_path, ns=(0, first.root.stat().st_mtime_ns + 10**9))
     again = find_package(zip_path)
     assert again.root != first.root and again.robot.get("name") == "renamed"
+
+
+def test_solidworks_documents_sent_instead_of_an_export_are_named(tmp_path):
+    """A Pack and Go folder (or its zip): the assembly and its parts, no URDF."""
+    folder = tmp_path / "pack_and_go" / "Arm"
+    folder.mkdir(parents=True)
+    for name in ("Arm.SLDASM", "base.SLDPRT", "arm.SLDPRT"):
+        (folder / name).write_bytes(bytes(range(256)))
+    zip_path = zipped(folder, tmp_path / "Arm.zip")
+    for given in (tmp_path / "pack_and_go", zip_path):
+        [fatal] = check(given).findings
+        assert fatal.rule == "not-urdf"
+        assert fatal.message.startswith("SolidWorks documents (1 assembly, 2 parts)")
+        assert fatal.fix.startswith("export the assembly with the exporter")
