@@ -39,6 +39,7 @@ from .media import RENDERERS
 from .notebook_setup import named_files, needed_files, on_site, read_by, setup_code
 from .practices import ROOT
 from .snippets import Block, Page, find_pages, parse_page
+from .snippets.execute import TEMP_VARIABLES
 from .snippets.parse import (INCLUDE_CODE, include_code_arguments, split_front_matter,
                              without_raw_tags)
 
@@ -342,7 +343,7 @@ def execute(nb: NotebookNode, timeout: float, folder: Path = FOLDER) -> Notebook
         local = Config(KernelManager={"transport": "ipc", "ip": f"{sockets}/ipc"})
         temp = Path(sockets, "tmp")
         temp.mkdir()
-        env = {**os.environ, **dict.fromkeys(("TMPDIR", "TEMP", "TMP"), str(temp))}
+        env = {**os.environ, **dict.fromkeys(TEMP_VARIABLES, str(temp))}
         NotebookClient(nb, kernel_name=KERNEL["name"], timeout=timeout, record_timing=False,
                        config=local, resources={"metadata": {"path": str(folder)}}
                        ).execute(env=env)

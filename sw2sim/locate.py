@@ -10,6 +10,7 @@ to give instead.
 
 from __future__ import annotations
 
+from itertools import islice
 from pathlib import Path
 
 from . import archive
@@ -49,7 +50,9 @@ def no_urdf(folder: Path) -> None:
     text, or SolidWorks documents (a Pack and Go folder or zip, sent instead of an export)."""
     for saved in sorted((folder / "urdf").glob("*.[uU][rR][dD][fF].[tT][xX][tT]")):
         _not_a_urdf(saved)
-    documents = [p for depth in ("*", "*/*", "*/*/*") for p in folder.glob(depth)
+    below = (p for depth in range(1, SEARCH_DEPTH + 1)
+             for p in folder.glob("/".join(["*"] * depth)))
+    documents = [p for p in islice(below, SEARCH_ENTRIES)
                  if p.suffix.lower() in (".sldasm", ".sldprt") and p.is_file()]
     if documents:
         assemblies = sum(p.suffix.lower() == ".sldasm" for p in documents)
@@ -103,6 +106,7 @@ def _not_a_urdf(path: Path) -> None:
 
 # How far below a given folder a package is looked for, and how many folders at most.
 SEARCH_DEPTH, SEARCH_FOLDERS = 3, 2000
+SEARCH_ENTRIES = 20_000   # files and folders looked at for SolidWorks documents, at most
 LISTED = 8   # packages named when a folder holds several
 
 

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import re
 import shutil
+import zipfile
 from pathlib import Path
 
 from repository import ROOT
@@ -24,6 +25,21 @@ def copy_example(n: int, folder: Path, name: str | None = None) -> Path:
     target = Path(folder) / (name or f"example_{n}")
     shutil.copytree(EXAMPLES / f"example_{n}", target)
     return target
+
+
+def zipped(folder: Path, archive_path: Path, *, backslashes=False, macos=False) -> Path:
+    """`folder` zipped with the folder itself at the top, as "Send to > Compressed
+    (zipped) folder" does; with backslashes in the names, as PowerShell 5's
+    Compress-Archive writes them; with macOS's __MACOSX copies beside the files."""
+    with zipfile.ZipFile(archive_path, "w", zipfile.ZIP_DEFLATED) as zf:
+        for path in sorted(folder.rglob("*")):
+            if path.is_file():
+                name = path.relative_to(folder.parent).as_posix()
+                zf.write(path, name.replace("/", "\\") if backslashes else name)
+                if macos:
+                    parent, _, base = name.rpartition("/")
+                    zf.writestr(f"__MACOSX/{parent}/._{base}", b"\x00\x05\x16\x07 resource fork")
+    return archive_path
 
 
 def urdf_of(package: Path) -> Path:

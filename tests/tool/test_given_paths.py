@@ -10,25 +10,10 @@ from pathlib import Path
 
 import pytest
 
-from packages import copy_example, edit, urdf_of
+from packages import copy_example, edit, urdf_of, zipped
 from sw2sim import archive
 from sw2sim.check import check
 from sw2sim.package import LoadError, find_package
-
-
-def zipped(folder: Path, archive_path: Path, *, backslashes=False, macos=False) -> Path:
-    """`folder` zipped with the folder itself at the top, as "Send to > Compressed
-    (zipped) folder" does; with backslashes in the names, as PowerShell 5's
-    Compress-Archive writes them; with macOS's __MACOSX copies beside the files."""
-    with zipfile.ZipFile(archive_path, "w", zipfile.ZIP_DEFLATED) as zf:
-        for path in sorted(folder.rglob("*")):
-            if path.is_file():
-                name = path.relative_to(folder.parent).as_posix()
-                zf.write(path, name.replace("/", "\\") if backslashes else name)
-                if macos:
-                    parent, _, base = name.rpartition("/")
-                    zf.writestr(f"__MACOSX/{parent}/._{base}", b"\x00\x05\x16\x07 resource fork")
-    return archive_path
 
 
 def summary(report) -> list[tuple[str, str, int | None]]:

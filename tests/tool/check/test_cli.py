@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from packages import copy_example, edit, urdf_of
+from packages import copy_example, edit, urdf_of, zipped
 from sw2sim import cli
 from sw2sim.check import stability
 from test_stability import negative_damping
@@ -288,18 +288,13 @@ def test_several_packages_are_checked_in_turn_with_a_line_for_them_all(tmp_path,
                                                                       monkeypatch):
     """`sw2sim check submissions/*.zip`: each its report, then one line; the worst status."""
     import tempfile
-    import zipfile
     monkeypatch.setattr(tempfile, "tempdir", str(tmp_path / "tmp"))
     (tmp_path / "tmp").mkdir()
     sound = copy_example(4, tmp_path / "a")
     broken = copy_example(3, tmp_path / "b")
     edit(urdf_of(broken), 'effort="', 'effort="-')
-    zipped = tmp_path / "student.zip"
-    with zipfile.ZipFile(zipped, "w") as zf:
-        for path in sorted(sound.rglob("*")):
-            if path.is_file():
-                zf.write(path, path.relative_to(sound.parent).as_posix())
-    status, out, _ = run(capsys, "check", str(sound), str(broken), str(zipped),
+    student = zipped(sound, tmp_path / "student.zip")
+    status, out, _ = run(capsys, "check", str(sound), str(broken), str(student),
                          str(tmp_path / "missing"), "--no-sim")
     assert status == 2, "the worst of 0, 1, 0 and 2"
     summaries = [line for line in out.splitlines() if re.search(r": \d+ error\(s\), ", line)]
