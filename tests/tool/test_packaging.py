@@ -30,6 +30,9 @@ PYPROJECT = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))
 ROS_MODULES = {"rospy", "std_msgs", "sensor_msgs", "geometry_msgs", "gazebo_msgs", "std_srvs",
                "control_msgs", "trajectory_msgs", "rosgraph", "roslaunch", "tf2_msgs",
                "rosgraph_msgs", "controller_manager_msgs"}
+# ROS 2 comes from the `ros2` extra (requirements-ros2.txt), imported only where it is used.
+ROS2_MODULES = {"rclpy", "builtin_interfaces", "rosidl_runtime_py", "catkin_pkg",
+                "ament_index_python"}
 
 
 def normalise(name: str) -> str:
@@ -65,7 +68,8 @@ def imported_modules(*folders: str) -> set[str]:
                     found.update(alias.name.split(".")[0] for alias in node.names)
                 elif isinstance(node, ast.ImportFrom) and node.level == 0 and node.module:
                     found.add(node.module.split(".")[0])
-    return found - set(sys.stdlib_module_names) - local_modules() - ROS_MODULES - {"__future__"}
+    return (found - set(sys.stdlib_module_names) - local_modules() - ROS_MODULES - ROS2_MODULES
+            - {"__future__"})
 
 
 @cache
@@ -151,6 +155,15 @@ def test_every_declared_package_is_pinned_in_requirements_txt():
     extras = PYPROJECT["project"]["optional-dependencies"]
     everything = declared(PYPROJECT["project"]["dependencies"] + extras["course"] + extras["test"])
     assert everything <= pinned, f"not pinned: {sorted(everything - pinned)}"
+
+
+def test_the_ros2_extra_is_what_requirements_ros2_txt_pins():
+    """`pip install ".[ros2]"` and `make setup` install the same ROS 2 set."""
+    lines = (ROOT / "requirements-ros2.txt").read_text(encoding="utf-8").splitlines()
+    pinned = {normalise(line.split("==")[0]) for line in lines
+              if "==" in line and not line.startswith("#")}
+    extra = declared(PYPROJECT["project"]["optional-dependencies"]["ros2"])
+    assert pinned and extra == pinned, (sorted(extra - pinned), sorted(pinned - extra))
 
 
 @pytest.fixture(scope="module")
