@@ -13,7 +13,8 @@ moving links carry 100,000 triangles each, `convert`, `render`), `runner` (every
 page runner, its processes plain and then forked from the fork server, side by side with
 `jupyter nbconvert --execute` over the same pages' notebooks; not in the default set), `ros`
 (the whole test suite as `make test` runs it, with and without tests/ros, in pairs: what
-the ROS tests add; not in the default set, it takes some ten minutes).
+the ROS tests add; not in the default set, it takes some ten minutes), `ros2` (the same for
+tests/ros2 and tests/tool/port, the ROS 2 tests).
 
 Figures, not assertions: compare them before and after a change (2-core machines are the
 target). Each line shows CPU seconds as well as wall-clock seconds: on a busy machine the
@@ -148,16 +149,17 @@ def tests() -> None:
 ROS_ROUNDS = 2   # pairs of whole runs: the figure varies by several seconds from run to run
 
 
-def ros() -> None:
-    """What the ROS tests add to `make test`: the whole suite as `make test` runs it (a
-    worker per core, in its environment), with and without tests/ros, in pairs that
-    take turns going first."""
+def _share_of(folders: list[str], what: str) -> None:
+    """What the tests in `folders` add to `make test`: the whole suite as `make test` runs
+    it (a worker per core, in its environment), with and without them, in pairs that take
+    turns going first."""
     jobs = str(cores())   # the Makefile's TEST_JOBS (auto)
-    section = Section(f"the ROS tests' share of `make test` (pytest -n {jobs} --dist loadscope)")
+    section = Section(f"{what}' share of `make test` (pytest -n {jobs} --dist loadscope)")
     command = [sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider", "-n", jobs,
                "--dist", "loadscope"]
     added = []
-    runs = [("without tests/ros", ["--ignore=tests/ros"]), ("with tests/ros", [])]
+    folder = " and ".join(folders)
+    runs = [(f"without {folder}", [f"--ignore={f}" for f in folders]), (f"with {folder}", [])]
     for round_ in range(1, ROS_ROUNDS + 1):
         walls = {}
         # each kind of run goes first in every other round: a run right after another
@@ -170,9 +172,20 @@ def ros() -> None:
             walls[label] = time.perf_counter() - start
             if done.returncode != 0:
                 print(f"   exit status {done.returncode}: {done.stdout.strip().splitlines()[-1:]}")
-        added.append(walls["with tests/ros"] - walls["without tests/ros"])
-        print(f"{f'round {round_}: added by tests/ros':60} {'':9} {added[-1]:7.2f} s", flush=True)
-    print(f"{'added by tests/ros, mean of the rounds':60} {'':9} {sum(added) / len(added):7.2f} s\n")
+        added.append(walls[f"with {folder}"] - walls[f"without {folder}"])
+        print(f"{f'round {round_}: added by {folder}':60} {'':9} {added[-1]:7.2f} s", flush=True)
+    print(f"{f'added by {folder}, mean of the rounds':60} {'':9} {sum(added) / len(added):7.2f} s\n")
+
+
+def ros() -> None:
+    """What the ROS 1 tests add to `make test`."""
+    _share_of(["tests/ros"], "the ROS 1 tests")
+
+
+def ros2() -> None:
+    """What the ROS 2 tests add to `make test`: tests/ros2 (the stand-in, the pages' rclpy
+    nodes) and tests/tool/port (the ported packages, built with colcon)."""
+    _share_of(["tests/ros2", "tests/tool/port"], "the ROS 2 tests")
 
 
 def _sw2sim(*args: str) -> subprocess.CompletedProcess:
@@ -294,7 +307,7 @@ def runner() -> None:
 
 
 SECTIONS = {"commands": commands, "models": models, "drawings": drawings, "pages": pages, "figures": figures,
-            "tests": tests, "runner": runner, "ros": ros}
+            "tests": tests, "runner": runner, "ros": ros, "ros2": ros2}
 
 
 def main(argv: list[str]) -> int:
