@@ -159,6 +159,31 @@ examples:
 """
 
 
+PORT_HELP = """\
+Writes a ROS 2 Jazzy package (ament_cmake) from a ROS 1 package the exporter wrote,
+into the folder OUT (the package's folder: put it in a workspace's src/):
+  package.xml              format 3, with what the launch files and controllers need
+  CMakeLists.txt           installs urdf, meshes, launch, config (and rviz) into share/
+  urdf/NAME.urdf           a <ros2_control> block (gz_ros2_control) in place of the
+                           transmissions and the gazebo_ros_control plugin
+  config/controllers.yaml  each ROS 1 controller's ROS 2 counterpart, and
+                           joint_state_broadcaster
+  launch/display.launch.py, launch/gazebo.launch.py   RViz; Gazebo Sim with the controllers
+  README.md                how to build and run it, and every choice made for you
+Each choice is also printed. The source is never changed. OUT must be new, empty, or
+an earlier output of sw2sim port (which is replaced). A name ROS 2 refuses
+(Arm_Assembly, robot.SLDASM, 2wd_car) is made legal (arm_assembly, robot_sldasm,
+r2wd_car); --name chooses another. The ROS 1 scripts/ are not ported: rospy nodes
+need rewriting with rclpy. Exit status: 0 written, 2 the input or OUT cannot be used.
+
+examples:
+  sw2sim port examples/example_3 -o ~/ros2_ws/src/example_3
+  sw2sim port my_robot.zip -o ~/ros2_ws/src/my_robot --name my_robot
+  sw2sim port examples/example_1 -o ~/ros2_ws/src/example_1 \\
+      --effort-joints front_left_joint,front_right_joint,rear_left_joint,rear_right_joint
+"""
+
+
 def main(argv: list[str] | None = None) -> int:
     """Run one command; return its exit status (never raise on bad input)."""
     parser = _parser()
@@ -278,6 +303,21 @@ def _parser() -> argparse.ArgumentParser:
     ros.add_argument("--view", action="store_true",
                      help="show the simulation in MuJoCo's viewer (needs a display)")
     ros.set_defaults(command="ros", run=_ros)
+
+    port = commands.add_parser("port", help="write a ROS 2 Jazzy package from the ROS 1 "
+                               "package", description=PORT_HELP, formatter_class=raw)
+    port.add_argument("path", metavar="PATH", help="package folder, .urdf file or .zip of "
+                      "the package")
+    port.add_argument("-o", "--output", metavar="OUT", required=True,
+                      help="the new package's folder (created; an earlier port is replaced)")
+    port.add_argument("--name", metavar="NEW", help="the ROS 2 package's name (default: the "
+                      "source's, made legal)")
+    port.add_argument("--effort-joints", metavar="NAME[,NAME...]", action="append", default=[],
+                      help="joints without a transmission to drive with an effort command, "
+                           "together, by effort_controller (JointGroupEffortController)")
+    port.add_argument("--urdf", metavar="NAME", help="which URDF to read, where the package "
+                      "holds several (its file name)")
+    port.set_defaults(command="port", run=_port)
     return parser
 
 
@@ -430,6 +470,26 @@ def _ros(args) -> int:
         view = False
     return run(args.path, launch=args.launch, duration=args.duration, realtime=args.realtime,
                view=view, say=lambda text: print(text, flush=True))
+
+
+# -- port ----------------------------------------------------------------------------
+def _port(args) -> int:
+    from .package import LoadError, find_package
+    from .port import PortError, port
+    try:
+        package = find_package(args.path, urdf=args.urdf)
+        report = port(package, args.output, name=args.name, effort_joints=args.effort_joints)
+    except LoadError as exc:
+        _say(f"sw2sim port: {exc}")
+        return EXIT_UNUSABLE
+    except PortError as exc:
+        _say(f"sw2sim port: {exc}")
+        return EXIT_UNUSABLE
+    except OSError as exc:
+        _say(f"sw2sim port: cannot write {args.output}: {exc.strerror or exc}")
+        return EXIT_UNUSABLE
+    print(report.format())
+    return EXIT_OK
 
 
 # -- view and render -------------------------------------------------------------------

@@ -1,0 +1,278 @@
+"""`sw2sim port`: a ROS 1 exporter package as a ROS 2 Jazzy ament_cmake package.
+
+    package.xml              format 3, ament_cmake, the run-time dependencies (manifest.py)
+    CMakeLists.txt           installs the folders into share/<name> (cmake.py)
+    urdf/<name>.urdf         ros2_control and gz_ros2_control instead of transmissions and
+                             gazebo_ros_control; mesh paths in the new name (urdf.py)
+    config/controllers.yaml  the ROS 1 controllers' ROS 2 counterparts (controllers.py)
+    launch/*.launch.py       RViz, and Gazebo Sim with the controllers (launch.py)
+    rviz/<file>.rviz         the package's RViz configuration, for RViz 2 (rviz.py)
+    meshes/                  copied as they are
+    README.md                how to build and run it, and every choice made (readme.py)
+
+The source is read as every command reads it (a folder or a .zip; a .xacro-only package is
+expanded) and never written to. Every decision taken for the user is a line of
+`PortReport.choices`, printed by the command and listed in README.md.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import tempfile
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from .. import mesh_paths
+from ..archive import shown
+from ..package import Package, as_package
+from . import cmake, controllers, launch, manifest, naming, rviz, urdf
+from .readme import readme
+
+MARKER = ".sw2sim-port"   # names the files an earlier port wrote, so it may be replaced
+
+__all__ = ["PortError", "PortReport", "port"]
+
+
+class PortError(Exception):
+    """The port cannot be made as asked (the output folder, an option); says what to do."""
+
+
+@dataclass
+class PortReport:
+    name: str
+    package_dir: Path
+    choices: list[str] = field(default_factory=list)
+    files: list[str] = field(default_factory=list)
+    controllers: list[str] = field(default_factory=list)
+    source: str = ""
+    replaced: bool = False
+
+    def format(self) -> str:
+        meshes = sum(f.startswith("meshes/") for f in self.files)
+        listed = [f for f in self.files if not f.startswith("meshes/")]
+        lines = [f"sw2sim port: {self.source} -> {self.package_dir} "
+                 f"(ROS 2 Jazzy package `{self.name}`)",
+                 f"{len(self.choices)} choice(s) made for you (README.md lists them too):"]
+        lines += [f"  - {c}" for c in self.choices]
+        lines.append(("replaced the earlier port in " if self.replaced else "wrote ") +
+                     f"{self.package_dir}: {', '.join(listed)}" +
+                     (f" and {meshes} mesh file(s) in meshes/" if meshes else ""))
+        lines.append(f"build it: copy the folder into a workspace's src/, run `colcon build`, "
+                     f"then `ros2 launch {self.name} gazebo.launch.py`")
+        return "\n".join(lines)
+
+
+def port(source: str | os.PathLike | Package, out: str | os.PathLike, *,
+         name: str | None = None, effort_joints=()) -> PortReport:
+    """Write the ROS 2 package for the ROS 1 package at `source` into the folder `out`.
+
+    Raises sw2sim.LoadError when the source cannot be read, PortError when `out` or an
+    option cannot be used; nothing is written then. `out` must be missing, empty, or an
+    earlier port's output (which is replaced).
+    """
+    package = as_package(source)
+    out = Path(out)
+    shown_source = shown(package.root) or str(package.source or package.root)
+    choices: list[str] = []
+    new_name = _name(package, name, choices)
+    _check_out(out, package.root)
+
+    tree = urdf.read_tree(package)
+    robot = tree.getroot()
+    urdf_rel = package.urdf.relative_to(package.root).as_posix()
+    if package.expanded_from is not None:
+        choices.append(f"{urdf_rel} was expanded with xacro into urdf/{new_name}.urdf.")
+    elif package.chosen_because:
+        choices.append(f"{urdf_rel} was ported ({package.chosen_because}); the package's other "
+                       "URDFs were left out.")
+    joints = urdf.movable_joints(robot)
+    effort = _effort_joints(effort_joints, joints)
+    transmissions = urdf.read_transmissions(robot, urdf_rel)
+    period = urdf.control_period(robot)
+    ros1, read = controllers.find_ros1_controllers(package.root)
+    try:
+        planned = controllers.plan(ros1, joints, effort_joints=effort,
+                                   update_rate=max(1, round(1 / period)) if period else None)
+    except controllers.Conflict as exc:
+        raise PortError(f"{exc}. Leave the joint out of --effort-joints, or remove one of the "
+                        "controllers from the ROS 1 YAML.") from None
+    planned.sources = read
+    commands = _commands(transmissions, planned, joints, effort, choices)
+    rewritten = urdf.rewrite(tree, package, new_name, commands, list(joints))
+    choices += transmissions.choices + planned.choices + rewritten.choices
+
+    files: dict[str, str | Path] = {}
+    for rel in _mesh_files(package.root):
+        files[rel] = package.root / rel
+    files.update(rewritten.meshes)
+    files[f"urdf/{new_name}.urdf"] = rewritten.text
+    files["config/controllers.yaml"] = controllers.yaml_text(planned, new_name)
+    rviz_file = rviz.find(package.root)
+    if rviz_file is not None:
+        text = rviz_file.read_text(encoding="utf-8", errors="replace")
+        if rviz.looks_like_rviz1(text):
+            text, changed = rviz.convert(text)
+            choices.append(f"{rviz_file.relative_to(package.root).as_posix()} was installed as "
+                           f"rviz/{rviz_file.name} with its {changed} RViz 1 class names changed "
+                           "to RViz 2's, and its RobotModel reading /robot_description; open it "
+                           "in RViz 2 and save it again.")
+        files[f"rviz/{rviz_file.name}"] = text
+    files["launch/display.launch.py"] = launch.display_launch(
+        new_name, f"{new_name}.urdf", rviz_file.name if rviz_file else None)
+    files["launch/gazebo.launch.py"] = launch.gazebo_launch(new_name, f"{new_name}.urdf",
+                                                            planned.names)
+    folders = sorted({rel.split("/")[0] for rel in files})
+    choices += _left_behind(package.root)
+    files["package.xml"] = manifest.package_xml(
+        new_name, package.manifest, [c.package for c in planned.controllers], choices)
+    files["CMakeLists.txt"] = cmake.cmakelists(new_name, folders)
+    order = ["package.xml", "CMakeLists.txt", "README.md"]
+    listed = order + sorted(f for f in files if f not in order)
+    files["README.md"] = readme(new_name, package.name, planned.names, choices, listed)
+
+    replaced = _write(out, files)
+    return PortReport(name=new_name, package_dir=out, choices=choices,
+                      files=[f for f in listed if f in files], controllers=planned.names,
+                      source=shown_source, replaced=replaced)
+
+
+def _name(package: Package, wanted: str | None, choices: list[str]) -> str:
+    if wanted is not None:
+        if not naming.is_legal(wanted):
+            raise PortError(f"--name {wanted!r}: ROS 2 refuses package names with "
+                            f"{naming.why_illegal(wanted)}; use lower-case letters, digits and "
+                            f"single underscores, starting with a letter, such as "
+                            f"{naming.legal_name(wanted)!r}")
+        if wanted != package.name:
+            choices.append(f"The package is named `{wanted}` (--name), not `{package.name}`.")
+        return wanted
+    if naming.is_legal(package.name):
+        return package.name
+    new = naming.legal_name(package.name)
+    choices.append(f"The package is named `{new}`: ROS 2 refuses `{package.name}` "
+                   f"({naming.why_illegal(package.name)}). --name NEW chooses another.")
+    return new
+
+
+def _effort_joints(given, joints: dict[str, str]) -> list[str]:
+    names = []
+    for item in given:
+        names += [n.strip() for n in str(item).split(",") if n.strip()]
+    unknown = [n for n in names if n not in joints]
+    if unknown:
+        raise PortError(f"--effort-joints: {', '.join(unknown)} is not a movable joint of the "
+                        f"URDF; its movable joints are {', '.join(joints) or '(none)'}")
+    return list(dict.fromkeys(names))
+
+
+def _commands(transmissions, planned, joints, effort, choices) -> dict[str, list[str]]:
+    commands = {j: list(i) for j, i in transmissions.commands.items() if j in joints}
+    unknown = [j for j in transmissions.commands if j not in joints]
+    if unknown:
+        choices.append("Transmissions name joints the URDF does not have as movable joints, and "
+                       "were left out: " + ", ".join(unknown) + ".")
+    for c in planned.controllers:
+        for joint, interface in c.commands.items():
+            have = commands.setdefault(joint, [])
+            if interface in have:
+                continue
+            if c.commands and joint not in effort:
+                choices.append(f"{joint} got a `{interface}` command interface for `{c.name}`" +
+                               (f" besides its transmission's {', '.join(have)}" if have else
+                                ", though it has no transmission") + ".")
+            have.append(interface)
+    return commands
+
+
+def _mesh_files(root: Path) -> list[str]:
+    meshes = root / "meshes"
+    if not meshes.is_dir():
+        return []
+    return [rel.as_posix() for rel in mesh_paths.package_files(root)
+            if rel.parts[0] == "meshes"]
+
+
+def _left_behind(root: Path) -> list[str]:
+    notes = []
+    scripts = root / "scripts"
+    if scripts.is_dir():
+        names = sorted(p.name for p in scripts.iterdir() if p.is_file())
+        if names:
+            notes.append("scripts/ was not ported: " + ", ".join(names) + " are ROS 1 (rospy) "
+                         "nodes; rewrite them with rclpy, and talk to the controllers' ROS 2 "
+                         "topics named above.")
+    launches = sorted(p.name for p in (root / "launch").glob("*.launch")) \
+        if (root / "launch").is_dir() else []
+    if launches:
+        notes.append("The ROS 1 launch files (" + ", ".join(launches) + ") were replaced by "
+                     "launch/display.launch.py and launch/gazebo.launch.py.")
+    yamls = sorted(p.name for p in (root / "config").glob("*.y*ml")) \
+        if (root / "config").is_dir() else []
+    if yamls:
+        notes.append("The ROS 1 configuration (" + ", ".join(f"config/{y}" for y in yamls) +
+                     ") was not copied: ROS 2 reads config/controllers.yaml.")
+    return notes
+
+
+def _check_out(out: Path, source: Path) -> None:
+    """Refuse an output folder that is a file, holds or is inside the source, or holds
+    files that no earlier port wrote."""
+    target = Path(os.path.abspath(out))
+    real = target.resolve() if target.exists() else target
+    if real == source or source in real.parents:
+        raise PortError(f"{out} is inside the source package {source}; sw2sim port never "
+                        "writes there. Give a folder outside it, e.g. ../"
+                        f"{source.name}_ros2")
+    if real in source.parents:
+        raise PortError(f"{out} holds the source package {source}; give a new folder")
+    if out.exists() and not out.is_dir():
+        raise PortError(f"{out} is a file; give a folder to write the package into")
+    if not out.is_dir() or not any(out.iterdir()):
+        return
+    earlier = _earlier(out)
+    if earlier is None:
+        raise PortError(f"{out} is not empty and is not an earlier output of sw2sim port, so "
+                        "nothing was written. Choose a new folder, or empty this one.")
+    present = {p.relative_to(out).as_posix() for p in out.rglob("*")
+               if p.is_file() or p.is_symlink()} - {MARKER}
+    others = sorted(present - earlier)
+    if others:
+        raise PortError(f"{out} is an earlier port, but holds files it did not write: "
+                        f"{', '.join(others[:8])}{' ...' if len(others) > 8 else ''}; nothing "
+                        "was replaced. Move them out (or port into a new folder) and run it again.")
+
+
+def _earlier(out: Path) -> set[str] | None:
+    try:
+        listed = json.loads((out / MARKER).read_text(encoding="utf-8"))["files"]
+    except (OSError, ValueError, KeyError, TypeError):
+        return None
+    return {str(f) for f in listed}
+
+
+def _write(out: Path, files: dict[str, str | Path]) -> bool:
+    """Write the package into a new folder beside `out`, then put it in `out`'s place."""
+    out = Path(os.path.abspath(out))
+    out.parent.mkdir(parents=True, exist_ok=True)
+    scratch = Path(tempfile.mkdtemp(prefix=f".{out.name}-", dir=out.parent))
+    try:
+        for rel, content in files.items():
+            target = scratch / rel
+            target.parent.mkdir(parents=True, exist_ok=True)
+            if isinstance(content, Path):
+                shutil.copyfile(content, target)
+            else:
+                target.write_text(content, encoding="utf-8", newline="\n")
+        (scratch / MARKER).write_text(json.dumps({"files": sorted(files)}, indent=1) + "\n",
+                                      encoding="utf-8")
+        scratch.chmod(0o755)
+        replaced = out.exists() and any(out.iterdir())
+        if out.exists():
+            shutil.rmtree(out)
+        scratch.rename(out)
+        return replaced
+    except BaseException:
+        shutil.rmtree(scratch, ignore_errors=True)
+        raise

@@ -1,0 +1,28 @@
+"""README.md of the ported package: what it is, how to build and run it, what was chosen."""
+
+from __future__ import annotations
+
+
+def readme(name: str, source: str, controllers: list[str], choices: list[str],
+           files: list[str]) -> str:
+    out = [f"# {name}", "",
+           f"A ROS 2 Jazzy package (ament_cmake) made by `sw2sim port` from the ROS 1 package "
+           f"`{source}` that the SolidWorks-to-URDF exporter wrote. It shows the robot in "
+           "RViz and simulates it in Gazebo Sim (Harmonic) with ros2_control.", "",
+           "## Build and run", "",
+           "```bash",
+           "mkdir -p ~/ros2_ws/src && cp -r " + name + " ~/ros2_ws/src/",
+           "cd ~/ros2_ws",
+           "rosdep install --from-paths src --ignore-src -y",
+           "colcon build",
+           "source install/setup.bash",
+           f"ros2 launch {name} display.launch.py   # RViz, a slider per joint",
+           f"ros2 launch {name} gazebo.launch.py    # Gazebo Sim with the controllers",
+           "```", "",
+           "`ros2 control list_controllers` then lists " +
+           ", ".join(f"`{c}`" for c in controllers) + ".", "",
+           "## Files", "",
+           *(f"- `{f}`" for f in files), "",
+           "## Choices made for you", "",
+           *(f"- {c}" for c in choices), ""]
+    return "\n".join(out)
