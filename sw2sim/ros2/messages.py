@@ -1,0 +1,270 @@
+"""The ROS 2 message packages PyPI lacks, built once with ROS 2's own generators.
+
+PyPI has no wheels of tf2_msgs (robot_state_publisher's /tf) nor of control_msgs (the
+controllers' state and the PID controller's reference). DEFINITIONS holds the messages
+the stand-in uses, field for field as upstream Jazzy has them (tf2_msgs 0.36, the jazzy
+branch of control_msgs 5.x), so that the type names and type hashes are upstream's and
+real ROS 2 nodes exchange them with the stand-in. The comments of upstream's files are
+left out: they do not enter the type hash.
+
+`ensure()` builds the two ament_cmake packages with rosidl (CMake from the `cmake` wheel,
+the generators from the ros-jazzy wheels) and installs them into the running Python's
+virtual environment: libraries into <venv>/lib, which the wheels' bootstrapper puts on
+LD_LIBRARY_PATH, the Python modules into site-packages and the ament index into
+<venv>/share, beside the wheels' own packages. A separate Python of the same environment
+(an rclpy node that does not import sw2sim) then imports them as it imports std_msgs.
+Outside a writable virtual environment they go to a cache folder instead, which
+`environment()` adds to a process's paths.
+
+    python -m sw2sim.ros2.messages     # build them if needed (about 30 s once; then a no-op)
+"""
+
+from __future__ import annotations
+
+import fcntl
+import hashlib
+import os
+import shutil
+import subprocess
+import sys
+import sysconfig
+import tempfile
+import time
+from pathlib import Path
+
+# package -> (dependencies, {file: text}); the text of each is upstream's fields in order.
+DEFINITIONS: dict[str, tuple[tuple[str, ...], dict[str, str]]] = {
+    "tf2_msgs": (("builtin_interfaces", "geometry_msgs"), {
+        "msg/TFMessage.msg": "geometry_msgs/TransformStamped[] transforms\n",
+    }),
+    "control_msgs": (("builtin_interfaces", "geometry_msgs", "std_msgs", "trajectory_msgs"), {
+        "msg/JointTrajectoryControllerState.msg": (
+            "# joint_trajectory_controller's state, once per update\n"
+            "std_msgs/Header header\n"
+            "\n"
+            "string[] joint_names\n"
+            "trajectory_msgs/JointTrajectoryPoint reference\n"
+            "trajectory_msgs/JointTrajectoryPoint feedback\n"
+            "trajectory_msgs/JointTrajectoryPoint error\n"
+            "trajectory_msgs/JointTrajectoryPoint output\n"
+            "\n"
+            "string[] multi_dof_joint_names\n"
+            "trajectory_msgs/MultiDOFJointTrajectoryPoint multi_dof_reference\n"
+            "trajectory_msgs/MultiDOFJointTrajectoryPoint multi_dof_feedback\n"
+            "trajectory_msgs/MultiDOFJointTrajectoryPoint multi_dof_error\n"
+            "trajectory_msgs/MultiDOFJointTrajectoryPoint multi_dof_output\n"
+            "float64 speed_scaling_factor\n"
+        ),
+        "msg/MultiDOFCommand.msg": (
+            "# a target per degree of freedom (pid_controller's ~/reference)\n"
+            "string[] dof_names\n"
+            "float64[] values\n"
+            "float64[] values_dot\n"
+        ),
+        "msg/SingleDOFState.msg": (
+            "# one degree of freedom of a controller's state\n"
+            "string name\n"
+            "float64 reference\n"
+            "float64 feedback\n"
+            "float64 feedback_dot\n"
+            "float64 error\n"
+            "float64 error_dot\n"
+            "float64 time_step\n"
+            "float64 output\n"
+        ),
+        "msg/SingleDOFStateStamped.msg": (
+            "std_msgs/Header header\n"
+            "SingleDOFState dof_state\n"
+        ),
+        "msg/MultiDOFStateStamped.msg": (
+            "# pid_controller's ~/controller_state\n"
+            "std_msgs/Header header\n"
+            "SingleDOFState[] dof_states\n"
+        ),
+    }),
+}
+
+VERSIONS = {"tf2_msgs": "0.36.4", "control_msgs": "5.8.0"}   # upstream's, for package.xml
+PYPI_HINT = 'pip install "sw2sim[ros2]"'
+
+
+class MessagesError(RuntimeError):
+    """The message packages could not be built (the reason, with the build's last lines)."""
+
+
+def digest() -> str:
+    return hashlib.sha256(repr(sorted(DEFINITIONS.items())).encode()).hexdigest()[:12]
+
+
+def _in_writable_venv() -> bool:
+    return sys.prefix != sys.base_prefix and os.access(Path(sys.prefix) / "lib", os.W_OK)
+
+
+def prefix() -> Path:
+    """Where the packages are installed: this virtual environment, or a cache folder."""
+    if _in_writable_venv():
+        return Path(sys.prefix)
+    base = Path(os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache")
+    return base / "sw2sim" / f"ros2-messages-{digest()}"
+
+
+def _marker(where: Path) -> Path:
+    return where / "share" / "sw2sim_ros2_messages" / f"{digest()}.done"
+
+
+def site_packages(where: Path) -> Path:
+    """Where ament_cmake_python installs Python modules below a prefix."""
+    if where == Path(sys.prefix):
+        return Path(sysconfig.get_paths()["purelib"])
+    return where / "lib" / f"python{sys.version_info.major}.{sys.version_info.minor}" / "site-packages"
+
+
+def ready() -> bool:
+    return _marker(prefix()).is_file()
+
+
+def environment(env: dict[str, str] | None = None) -> dict[str, str]:
+    """`env` (default os.environ) with the paths a process needs to load the packages
+    (nothing to add inside the virtual environment, where they sit with the wheels)."""
+    env = dict(os.environ if env is None else env)
+    where = prefix()
+    if where == Path(sys.prefix):
+        return env
+    for name, path in (("LD_LIBRARY_PATH", where / "lib"), ("PYTHONPATH", site_packages(where)),
+                       ("AMENT_PREFIX_PATH", where)):
+        parts = [p for p in env.get(name, "").split(os.pathsep) if p]
+        if str(path) not in parts:
+            env[name] = os.pathsep.join([str(path), *parts])
+    return env
+
+
+def ensure(say=None) -> Path:
+    """Build and install the packages unless done; return the prefix. `say` gets one line
+    before a build starts."""
+    where = prefix()
+    if _marker(where).is_file():
+        return where
+    lock_dir = Path(os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache") / "sw2sim"
+    lock_dir.mkdir(parents=True, exist_ok=True)
+    with open(lock_dir / "ros2-messages.lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)   # one build at a time; the others wait for it
+        if _marker(where).is_file():
+            return where
+        if say:
+            say(f"sw2sim ros2: building the tf2_msgs and control_msgs message packages into "
+                f"{where} (once, about 30 s)")
+        began = time.monotonic()
+        with tempfile.TemporaryDirectory(prefix="sw2sim-ros2-messages-") as scratch:
+            _build_all(Path(scratch), where)
+        _marker(where).parent.mkdir(parents=True, exist_ok=True)
+        _marker(where).write_text(f"built in {time.monotonic() - began:.0f} s\n", encoding="utf-8")
+    return where
+
+
+def write_package(name: str, folder: Path) -> None:
+    """The ament_cmake package `name` in `folder`: package.xml, CMakeLists.txt, msg/."""
+    depends, files = DEFINITIONS[name]
+    folder.mkdir(parents=True, exist_ok=True)
+    for file, text in files.items():
+        (folder / file).parent.mkdir(parents=True, exist_ok=True)
+        (folder / file).write_text(text, encoding="utf-8")
+    depend_lines = "".join(f"  <depend>{d}</depend>\n" for d in depends)
+    (folder / "package.xml").write_text(
+        '<?xml version="1.0"?>\n<package format="3">\n'
+        f"  <name>{name}</name>\n  <version>{VERSIONS[name]}</version>\n"
+        f"  <description>The {name} messages sw2sim ros2 uses, as upstream defines them"
+        "</description>\n"
+        '  <maintainer email="sw2sim@example.com">sw2sim</maintainer>\n'
+        "  <license>BSD-3-Clause</license>\n"
+        "  <buildtool_depend>ament_cmake</buildtool_depend>\n"
+        "  <buildtool_depend>rosidl_default_generators</buildtool_depend>\n"
+        f"{depend_lines}"
+        "  <exec_depend>rosidl_default_runtime</exec_depend>\n"
+        "  <member_of_group>rosidl_interface_packages</member_of_group>\n"
+        "  <export><build_type>ament_cmake</build_type></export>\n"
+        "</package>\n", encoding="utf-8")
+    finds = "".join(f"find_package({d} REQUIRED)\n" for d in depends)
+    # The wheels' CMake exports name the include folder of the machine that built them
+    # on their Python targets (for every package find_package brought in, dependencies
+    # of dependencies too); CMake refuses a missing folder, so point them at ours.
+    fixes = (
+        "get_property(imported DIRECTORY PROPERTY IMPORTED_TARGETS)\n"
+        "foreach(target ${imported})\n"
+        "  if(target MATCHES \"__rosidl_generator_py$\")\n"
+        "    set_target_properties(${target} PROPERTIES\n"
+        "      INTERFACE_INCLUDE_DIRECTORIES \"${Python3_INCLUDE_DIRS}\")\n"
+        "  endif()\n"
+        "endforeach()\n")
+    interfaces = " ".join(f'"{f}"' for f in files)
+    (folder / "CMakeLists.txt").write_text(
+        "cmake_minimum_required(VERSION 3.10)\n"
+        f"project({name})\n"
+        "find_package(ament_cmake REQUIRED)\n"
+        "find_package(rosidl_default_generators REQUIRED)\n"
+        f"{finds}"
+        "find_package(Python3 REQUIRED COMPONENTS Interpreter Development)\n"
+        f"{fixes}"
+        f"rosidl_generate_interfaces(${{PROJECT_NAME}} {interfaces}\n"
+        f"  DEPENDENCIES {' '.join(depends)})\n"
+        "ament_export_dependencies(rosidl_default_runtime)\n"
+        "ament_package()\n", encoding="utf-8")
+
+
+def _build_all(scratch: Path, where: Path) -> None:
+    venv = Path(sys.prefix)
+    env = dict(os.environ)
+    env["PATH"] = os.pathsep.join([str(venv / "bin"), env.get("PATH", "")])
+    for name in ("AMENT_PREFIX_PATH", "CMAKE_PREFIX_PATH"):
+        env[name] = os.pathsep.join(p for p in [str(venv), env.get(name)] if p)
+    env["LD_LIBRARY_PATH"] = os.pathsep.join(
+        p for p in [str(venv / "lib"), env.get("LD_LIBRARY_PATH")] if p)
+    cmake = shutil.which("cmake", path=env["PATH"])
+    if cmake is None:
+        raise MessagesError(f"cmake is not installed ({PYPI_HINT} brings it)")
+    jobs = str(max(1, os.cpu_count() or 1))
+    running = []
+    for name in DEFINITIONS:
+        source, build = scratch / name, scratch / f"build-{name}"
+        write_package(name, source)
+        log = open(scratch / f"{name}.log", "w")
+        command = " && ".join([
+            f'"{cmake}" -S "{source}" -B "{build}" -DCMAKE_BUILD_TYPE=Release '
+            f'-DCMAKE_INSTALL_PREFIX="{where}" -DPython3_EXECUTABLE="{sys.executable}" '
+            f'-DPYTHON_EXECUTABLE="{sys.executable}" -DBUILD_TESTING=OFF '
+            f'-DPYTHON_INSTALL_DIR="{site_packages(where).relative_to(where)}"',
+            f'"{cmake}" --build "{build}" -j {jobs}',
+            f'"{cmake}" --install "{build}"'])
+        # The two packages are independent: built side by side.
+        running.append((name, log, subprocess.Popen(command, shell=True, env=env, stdout=log,
+                                                    stderr=subprocess.STDOUT)))
+    failed = []
+    for name, log, process in running:
+        process.wait()
+        log.close()
+        if process.returncode:
+            tail = (scratch / f"{name}.log").read_text(errors="replace").splitlines()[-15:]
+            failed.append(f"{name}:\n" + "\n".join(tail))
+    if failed:
+        raise MessagesError("building the message packages failed:\n" + "\n".join(failed))
+
+
+def main() -> int:
+    began = time.monotonic()
+    try:
+        import rclpy  # noqa: F401
+    except ImportError:
+        print(f"sw2sim ros2: rclpy is not installed ({PYPI_HINT} or `make setup`); "
+              "nothing to build", file=sys.stderr)
+        return 2
+    try:
+        where = ensure(say=lambda text: print(text, flush=True))
+    except MessagesError as exc:
+        print(f"sw2sim ros2: {exc}", file=sys.stderr)
+        return 1
+    print(f"sw2sim ros2: tf2_msgs and control_msgs are in {where} "
+          f"({time.monotonic() - began:.1f} s)")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
