@@ -184,6 +184,24 @@ examples:
 """
 
 
+ROS2_HELP = """\
+Runs a ROS 2 package's robot under real ROS 2 (rclpy, Jazzy), with MuJoCo standing in
+for Gazebo Sim, gz_ros2_control and robot_state_publisher, in one process: /clock,
+/robot_description, /tf and /tf_static, /joint_states from joint_state_broadcaster, and
+the topics of the controllers config/controllers.yaml names
+(joint_trajectory_controller, the forward command controllers, pid_controller), with
+ros2_controllers' names and types. A ROS 1 export is ported first (`sw2sim port`) into a
+temporary folder. ROS 2 traffic stays on this machine, in ROS_DOMAIN_ID (0 if unset);
+give a second terminal the same ROS_DOMAIN_ID and ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST.
+It stops on Ctrl-C, SIGTERM or --duration.
+
+examples:
+  sw2sim ros2 my_robot_ros2 --duration 20
+  sw2sim ros2 examples/example_3 --view
+  ROS_DOMAIN_ID=7 sw2sim ros2 my_robot_ros2 --realtime 0
+"""
+
+
 def main(argv: list[str] | None = None) -> int:
     """Run one command; return its exit status (never raise on bad input)."""
     parser = _parser()
@@ -303,6 +321,18 @@ def _parser() -> argparse.ArgumentParser:
     ros.add_argument("--view", action="store_true",
                      help="show the simulation in MuJoCo's viewer (needs a display)")
     ros.set_defaults(command="ros", run=_ros)
+
+    ros2 = commands.add_parser("ros2", help="run a ROS 2 package's robot under rclpy, with "
+                               "MuJoCo in Gazebo Sim's place", description=ROS2_HELP,
+                               formatter_class=raw)
+    ros2.add_argument("path", metavar="PATH", help="package folder or .zip of it (ROS 2, or a "
+                      "ROS 1 export, ported first)")
+    ros2.add_argument("--duration", type=float, metavar="S", help="stop after S seconds")
+    ros2.add_argument("--realtime", type=float, default=1.0, metavar="F",
+                      help="real-time factor: 1 (default) as in Gazebo, 0 as fast as possible")
+    ros2.add_argument("--view", action="store_true",
+                      help="show the simulation in MuJoCo's viewer (needs a display)")
+    ros2.set_defaults(command="ros2", run=_ros2)
 
     port = commands.add_parser("port", help="write a ROS 2 Jazzy package from the ROS 1 "
                                "package", description=PORT_HELP, formatter_class=raw)
@@ -490,6 +520,16 @@ def _port(args) -> int:
         return EXIT_UNUSABLE
     print(report.format())
     return EXIT_OK
+
+
+def _ros2(args) -> int:
+    from .ros2.run import run
+    view = args.view
+    if view and (reason := _no_display()):
+        _say(f"sw2sim ros2: --view: {reason}; the simulation runs without the viewer")
+        view = False
+    return run(args.path, duration=args.duration, realtime=args.realtime, view=view,
+               say=lambda text: print(text, flush=True))
 
 
 # -- view and render -------------------------------------------------------------------

@@ -1,0 +1,263 @@
+"""The simulation node: MuJoCo where Gazebo Sim, gz_ros2_control and robot_state_publisher
+would run, as one rclpy node (named `sw2sim`) in the `sw2sim ros2` process.
+
+It publishes, with the real ROS 2 types:
+- `/clock` (rosgraph_msgs/Clock): the simulated time, CLOCK_HZ times per simulated second
+  and no more often than CLOCK_HZ times per wall second (as `sw2sim ros` does, and for
+  the same reason: run faster than real time, every node that follows the clock would
+  otherwise spend its time reading it);
+- `/robot_description` (std_msgs/String, transient local, depth 1) and `/tf_static`
+  (tf2_msgs/TFMessage, transient local) once, as robot_state_publisher does; `/tf` with
+  the moving joints' transforms for every joint state published;
+- `/joint_states` (sensor_msgs/JointState) from each joint_state_broadcaster at its
+  `update_rate` (the controller manager's by default), and each controller's topics
+  (sw2sim.ros2.controllers), its `~/controller_state` at the same rate.
+No topic is published more often than CLOCK_HZ times per simulated second (the real
+controllers publish their state at every update, a thousand times a second).
+
+The model is `sw2sim.load_package`'s, stepped at its own time step; the controller
+manager updates every `1 / update_rate` of simulated time (at most once per step, as
+gz_ros2_control does), and each joint's force follows sw2sim.ros2.hardware.
+"""
+
+from __future__ import annotations
+
+import math
+import threading
+import time
+
+import mujoco
+import numpy as np
+
+from . import config as config_module
+from . import controllers as ctl
+from . import description, hardware
+
+CLOCK_HZ = 100.0
+
+
+class Simulation:
+    """The model, the controllers and the ROS interfaces; `step` advances it."""
+
+    def __init__(self, package, setup: config_module.Setup, node, say=print):
+        from ..loader import load_package
+        self.node, self.setup, self.say = node, setup, say
+        self.spec = load_package(package, fixed_base=package.world_fixed)
+        self.joint_names = [j for j in setup.joints]
+        for name in self.joint_names:
+            self.spec.add_actuator(name=f"ros2_control_{name}", target=name,
+                                   trntype=mujoco.mjtTrn.mjTRN_JOINT,
+                                   gaintype=mujoco.mjtGain.mjGAIN_FIXED,
+                                   biastype=mujoco.mjtBias.mjBIAS_AFFINE, gainprm=[1] + [0] * 9)
+        self.model = self.spec.compile()
+        self.data = mujoco.MjData(self.model)
+        m = self.model
+        # initial_value params of the position and velocity state interfaces
+        for name, joint in setup.joints.items():
+            j = m.joint(name).id
+            if "position" in joint.initial:
+                self.data.qpos[m.jnt_qposadr[j]] = joint.initial["position"]
+            if "velocity" in joint.initial:
+                self.data.qvel[m.jnt_dofadr[j]] = joint.initial["velocity"]
+        mujoco.mj_forward(m, self.data)
+        self.lock = threading.RLock()
+        self.places = {}
+        limits = {}
+        from ..ros_control import read_joint_limits
+        for name, lim in read_joint_limits(package).items():
+            limits[name] = lim.effort if lim.effort and lim.effort > 0 else math.inf
+        for name in self.joint_names:
+            j = m.joint(name).id
+            self.places[name] = (int(m.jnt_qposadr[j]), int(m.jnt_dofadr[j]),
+                                 m.actuator(f"ros2_control_{name}").id,
+                                 limits.get(name, math.inf),
+                                 1.0 / max(float(m.dof_invweight0[m.jnt_dofadr[j]]), 1e-9))
+        self.dt = float(m.opt.timestep)
+        self.period = max(1.0 / setup.update_rate, self.dt)
+        self.next_update = 0.0
+        self.urdf_joints = description.joints(package.robot)
+        self.controllers: dict[str, ctl.Controller] = {}
+        self.commands: dict[str, dict] = {}
+        self.publishers = {}
+        self.next_publish: dict[str, float] = {}
+        self.next_clock = self.next_clock_wall = 0.0
+        self.text = package.urdf.read_text(encoding="utf-8")
+
+    # -- state ---------------------------------------------------------------------------
+    def state(self) -> dict[str, tuple[float, float]]:
+        d = self.data
+        return {n: (float(d.qpos[p[0]]), float(d.qvel[p[1]])) for n, p in self.places.items()}
+
+    @property
+    def time(self) -> float:
+        return float(self.data.time)
+
+    # -- ROS -----------------------------------------------------------------------------
+    def start(self) -> None:
+        from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
+        from rosgraph_msgs.msg import Clock
+        from sensor_msgs.msg import JointState
+        from std_msgs.msg import String
+        from tf2_msgs.msg import TFMessage
+        node = self.node
+        latched = QoSProfile(depth=1, durability=DurabilityPolicy.TRANSIENT_LOCAL,
+                             reliability=ReliabilityPolicy.RELIABLE)
+        self.clock = node.create_publisher(Clock, "/clock", 10)
+        self.description = node.create_publisher(String, "/robot_description", latched)
+        self.tf_static = node.create_publisher(TFMessage, "/tf_static", latched)
+        self.tf = node.create_publisher(TFMessage, "/tf", 100)
+        self.description.publish(String(data=self.text))
+        stamp = self._stamp(self.time)
+        fixed = [description.stamped(j, 0.0, stamp) for j in self.urdf_joints
+                 if j.kind == "fixed"]
+        self.tf_static.publish(TFMessage(transforms=fixed))
+        state = self.state()
+        for name, kind in self.setup.controllers.items():
+            params = self.setup.params(name)
+            try:
+                controller = ctl.create(name, kind, params, self.setup.joints)
+            except ctl.ConfigError as exc:
+                self.say(f"sw2sim ros2: controller {exc}; not started")
+                continue
+            controller.activate(state)
+            self.controllers[name] = controller
+            rate = float(params.get("update_rate") or self.setup.update_rate)
+            controller.publish_period = 1.0 / min(rate, CLOCK_HZ)
+            if kind == ctl.JSB:
+                self.publishers[name] = node.create_publisher(JointState, "/joint_states", 10)
+            else:
+                self._controller_topics(controller)
+        self.say(f"sw2sim ros2: {self.setup.name}: {len(self.joint_names)} joint(s) under "
+                 f"ros2_control; controllers: {', '.join(self.controllers) or 'none'}")
+
+    def _controller_topics(self, c: ctl.Controller) -> None:
+        from rclpy.qos import QoSProfile, ReliabilityPolicy
+        node, base = self.node, f"/{c.name}"
+        if isinstance(c, ctl.JointTrajectory):
+            from control_msgs.msg import JointTrajectoryControllerState
+            from trajectory_msgs.msg import JointTrajectory
+
+            def trajectory(message, c=c):
+                stamp = message.header.stamp.sec + message.header.stamp.nanosec * 1e-9
+                points = [(p.time_from_start.sec + p.time_from_start.nanosec * 1e-9,
+                           list(p.positions), list(p.velocities), list(p.accelerations))
+                          for p in message.points]
+                c.receive(message.joint_names, stamp, points)
+                self._report(c)
+            node.create_subscription(JointTrajectory, f"{base}/joint_trajectory", trajectory, 10)
+            self.publishers[c.name] = node.create_publisher(
+                JointTrajectoryControllerState, f"{base}/controller_state", 10)
+        elif isinstance(c, ctl.Forward):
+            from std_msgs.msg import Float64MultiArray
+
+            def commands(message, c=c):
+                c.command(message.data)
+                self._report(c)
+            node.create_subscription(Float64MultiArray, f"{base}/commands", commands, 10)
+        elif isinstance(c, ctl.PidController):
+            from control_msgs.msg import MultiDOFCommand, MultiDOFStateStamped
+
+            def reference(message, c=c):
+                c.receive(message.dof_names, message.values, message.values_dot)
+                self._report(c)
+            best_effort = QoSProfile(depth=1, reliability=ReliabilityPolicy.BEST_EFFORT)
+            node.create_subscription(MultiDOFCommand, f"{base}/reference", reference,
+                                     best_effort)
+            self.publishers[c.name] = node.create_publisher(
+                MultiDOFStateStamped, f"{base}/controller_state", 10)
+
+    def _report(self, c) -> None:
+        while getattr(c, "errors", None):
+            self.node.get_logger().error(f"{c.name}: {c.errors.pop(0)}")
+
+    @staticmethod
+    def _stamp(t: float):
+        from builtin_interfaces.msg import Time
+        sec = int(math.floor(t))
+        return Time(sec=sec, nanosec=min(int(round((t - sec) * 1e9)), 999_999_999))
+
+    # -- stepping ------------------------------------------------------------------------
+    def step(self) -> None:
+        with self.lock:
+            m, d = self.model, self.data
+            now = float(d.time)
+            if now >= self.next_update - 1e-9:
+                state = self.state()
+                commands: dict[str, dict] = {}
+                for c in self.controllers.values():
+                    for joint, values in c.update(now, self.period, state).items():
+                        commands.setdefault(joint, {}).update(values)
+                self.commands = commands
+                self.next_update = now + self.period
+            gain = self.setup.position_proportional_gain * self.setup.update_rate
+            for name, (qa, va, a, limit, inertia) in self.places.items():
+                q, v = float(d.qpos[qa]), float(d.qvel[va])
+                joint = self.setup.joints[name]
+                law = hardware.joint_law(
+                    self.commands.get(name, {}), q, v, effort_limit=limit, inertia=inertia,
+                    dt=self.dt, position_gain=gain, enforce=self.setup.enforce_command_limits,
+                    interface_limits=joint.limits) if joint.command else (0.0, 0.0, 0.0)
+                d.ctrl[a] = law[0]
+                m.actuator_biasprm[a, 1] = law[1]
+                m.actuator_biasprm[a, 2] = law[2]
+            mujoco.mj_step(m, d)
+        self._publish(float(self.data.time))
+
+    def _publish(self, now: float) -> None:
+        from rosgraph_msgs.msg import Clock
+        wall, period = time.monotonic(), 1.0 / CLOCK_HZ
+        if now >= self.next_clock - 1e-9 and wall + period / 2 >= self.next_clock_wall:
+            self.clock.publish(Clock(clock=self._stamp(now)))
+            self.next_clock = now + period
+            self.next_clock_wall = max(self.next_clock_wall, wall - period / 2) + period
+        for name, c in self.controllers.items():
+            if now < self.next_publish.get(name, 0.0) - 1e-9:
+                continue
+            self.next_publish[name] = now + c.publish_period
+            with self.lock:
+                state = self.state()
+                stamp = self._stamp(now)
+                if isinstance(c, ctl.JointStateBroadcaster):
+                    message = self._joint_states(stamp)
+                elif name in self.publishers:
+                    message = c.state_message(stamp, state)
+                else:
+                    continue
+            self.publishers[name].publish(message)
+            if isinstance(c, ctl.JointStateBroadcaster):
+                self._publish_tf(message)
+
+    def _joint_states(self, stamp):
+        from sensor_msgs.msg import JointState
+        m, d = self.model, self.data
+        message = JointState()
+        message.header.stamp = stamp
+        names = list(self.joint_names)
+        message.name = names
+        fields = {"position": [], "velocity": [], "effort": []}
+        present = {k: any(k in self.setup.joints[n].state for n in names) for k in fields}
+        for n in names:
+            qa, va, a, _, _ = self.places[n]
+            have = self.setup.joints[n].state
+            values = {"position": float(d.qpos[qa]), "velocity": float(d.qvel[va]),
+                      "effort": float(d.actuator_force[a])}
+            for k in fields:
+                if present[k]:
+                    fields[k].append(values[k] if k in have else math.nan)
+        message.position, message.velocity, message.effort = (
+            fields["position"], fields["velocity"], fields["effort"])
+        return message
+
+    def _publish_tf(self, joint_state) -> None:
+        from tf2_msgs.msg import TFMessage
+        positions = dict(zip(joint_state.name, joint_state.position))
+        transforms = [description.stamped(j, positions[j.name], joint_state.header.stamp)
+                      for j in self.urdf_joints
+                      if j.kind in description.MOVING and j.name in positions]
+        if transforms:
+            self.tf.publish(TFMessage(transforms=transforms))
+
+
+def body_pose(sim: Simulation, link: str) -> np.ndarray:
+    """A link's position in the world frame, from MuJoCo (for checks)."""
+    return np.array(sim.data.body(link).xpos)

@@ -1,0 +1,126 @@
+"""An independent ROS 2 node (rclpy only, no sw2sim): it records what the stand-in serves,
+sends the commands it is given, and prints one JSON object once the simulated clock
+is UNTIL seconds past the moment it sent its commands (without commands: past the first
+joint state it received) (or after WALL_TIMEOUT seconds of
+wall time).
+
+    python recorder.py UNTIL [--trajectory CONTROLLER JOINT POSITION SECONDS] ...
+                             [--commands CONTROLLER V1,V2,...] [--reference CONTROLLER JOINT VALUE]
+                             [--state CONTROLLER {jtc,pid}] [--tf LINK]
+
+Commands are sent once the first joint state has arrived.
+"""
+
+import argparse
+import json
+import sys
+import time
+
+import rclpy
+from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
+from rosgraph_msgs.msg import Clock
+from sensor_msgs.msg import JointState
+from std_msgs.msg import Float64MultiArray, String
+from tf2_msgs.msg import TFMessage
+from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
+
+WALL_TIMEOUT = 40.0
+
+
+def seconds(stamp) -> float:
+    return stamp.sec + stamp.nanosec * 1e-9
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser()
+    parser.add_argument("until", type=float)
+    parser.add_argument("--trajectory", nargs=4, action="append", default=[])
+    parser.add_argument("--commands", nargs=2, action="append", default=[])
+    parser.add_argument("--reference", nargs=3, action="append", default=[])
+    parser.add_argument("--state", nargs=2, action="append", default=[])
+    args = parser.parse_args()
+    rclpy.init()
+    node = rclpy.create_node("recorder")
+    latched = QoSProfile(depth=1, durability=DurabilityPolicy.TRANSIENT_LOCAL,
+                         reliability=ReliabilityPolicy.RELIABLE)
+    out = {"clock": [], "states": [], "description": None, "tf_static": [], "tf": None,
+           "controller_state": {}}
+
+    def on_state(m):
+        out["states"].append([seconds(m.header.stamp), dict(zip(m.name, m.position)),
+                              dict(zip(m.name, m.velocity))])
+
+    def on_tf(m):
+        out["tf"] = [[t.header.frame_id, t.child_frame_id, seconds(t.header.stamp),
+                      [t.transform.translation.x, t.transform.translation.y,
+                       t.transform.translation.z],
+                      [t.transform.rotation.x, t.transform.rotation.y, t.transform.rotation.z,
+                       t.transform.rotation.w]] for t in m.transforms]
+
+    def on_static(m):
+        out["tf_static"] += [[t.header.frame_id, t.child_frame_id,
+                              [t.transform.translation.x, t.transform.translation.y,
+                               t.transform.translation.z],
+                              [t.transform.rotation.x, t.transform.rotation.y,
+                               t.transform.rotation.z, t.transform.rotation.w]]
+                             for t in m.transforms]
+
+    node.create_subscription(Clock, "/clock", lambda m: out["clock"].append(seconds(m.clock)), 10)
+    node.create_subscription(JointState, "/joint_states", on_state, 10)
+    node.create_subscription(String, "/robot_description",
+                             lambda m: out.__setitem__("description", m.data), latched)
+    node.create_subscription(TFMessage, "/tf_static", on_static, latched)
+    node.create_subscription(TFMessage, "/tf", on_tf, 100)
+    for controller, kind in args.state:
+        if kind == "jtc":
+            from control_msgs.msg import JointTrajectoryControllerState as T
+
+            def keep(m, c=controller):
+                out["controller_state"][c] = {
+                    "joints": list(m.joint_names), "reference": list(m.reference.positions),
+                    "feedback": list(m.feedback.positions), "error": list(m.error.positions),
+                    "output": list(m.output.effort), "stamp": seconds(m.header.stamp)}
+        else:
+            from control_msgs.msg import MultiDOFStateStamped as T
+
+            def keep(m, c=controller):
+                out["controller_state"][c] = [
+                    {"name": s.name, "reference": s.reference, "feedback": s.feedback,
+                     "error": s.error, "output": s.output} for s in m.dof_states]
+        node.create_subscription(T, f"/{controller}/controller_state", keep, 10)
+    senders = []
+    for controller, joint, position, duration in args.trajectory:
+        publisher = node.create_publisher(JointTrajectory, f"/{controller}/joint_trajectory", 10)
+        whole, part = divmod(float(duration), 1.0)
+        point = JointTrajectoryPoint(positions=[float(position)])
+        point.time_from_start.sec, point.time_from_start.nanosec = int(whole), int(part * 1e9)
+        senders.append((publisher, JointTrajectory(joint_names=[joint], points=[point])))
+    for controller, values in args.commands:
+        publisher = node.create_publisher(Float64MultiArray, f"/{controller}/commands", 10)
+        senders.append((publisher, Float64MultiArray(data=[float(v) for v in values.split(",")])))
+    for controller, joint, value in args.reference:
+        from control_msgs.msg import MultiDOFCommand
+        publisher = node.create_publisher(MultiDOFCommand, f"/{controller}/reference", 10)
+        senders.append((publisher, MultiDOFCommand(dof_names=[joint], values=[float(value)],
+                                                   values_dot=[0.0])))
+    deadline = time.monotonic() + WALL_TIMEOUT
+    sent_at = base = None
+    while time.monotonic() < deadline:
+        rclpy.spin_once(node, timeout_sec=0.01)
+        if sent_at is None and out["states"] and all(
+                p.get_subscription_count() for p, _ in senders):
+            for publisher, message in senders:
+                publisher.publish(message)
+            sent_at = out["states"][-1][0]
+            out["sent_at"] = sent_at
+        base = sent_at if senders else (out["states"][0][0] if out["states"] else None)
+        if base is not None and out["clock"] and out["clock"][-1] >= base + args.until:
+            break
+    print(json.dumps(out))
+    node.destroy_node()
+    rclpy.shutdown()
+    return 0 if base is not None and out["clock"][-1] >= base + args.until else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,63 @@
+"""`sw2sim ros2` on example_3 as `sw2sim port` writes it, seen by an independent rclpy node:
+the arm follows a trajectory to each controller, /clock advances, /robot_description
+holds the URDF, and /tf_static and /tf give MuJoCo's kinematics."""
+
+from __future__ import annotations
+
+import math
+
+import mujoco
+import numpy as np
+
+import sw2sim
+from sw2sim.ros2 import description
+
+
+def compose(chain):
+    """world -> link from a list of (translation, quaternion xyzw) transforms."""
+    position, rotation = np.zeros(3), (0.0, 0.0, 0.0, 1.0)
+    for t, q in chain:
+        position = position + np.array(description.rotate(rotation, t))
+        rotation = description.multiply(rotation, tuple(q))
+    return position, rotation
+
+
+def test_an_independent_node_drives_the_arm_and_sees_mujocos_kinematics(ros2, ported_example_3):
+    ros2.standin(ported_example_3)
+    out = ros2.record("4", "--trajectory", "middle_arm_controller", "middle_arm_joint", "0.5", "2",
+                      "--trajectory", "end_arm_controller", "end_arm_joint", "-0.3", "2",
+                      "--state", "middle_arm_controller", "jtc")
+    assert "ROS_DOMAIN_ID=" in ros2.log("standin")
+    # /clock advances; the last joint state is at the targets
+    assert out["clock"] == sorted(out["clock"]) and out["clock"][-1] > out["clock"][0] + 3.5
+    t, q, v = out["states"][-1]
+    assert abs(q["middle_arm_joint"] - 0.5) < 0.01 and abs(q["end_arm_joint"] + 0.3) < 0.01
+    # reached by the time the trajectory ends, from a linear reference (not before it)
+    halfway = [s for s in out["states"] if s[0] >= out["sent_at"] + 1.0][0]
+    assert 0.1 < halfway[1]["middle_arm_joint"] < 0.4
+    # /robot_description is the URDF; /tf_static holds the fixed joint
+    assert out["description"] == (ported_example_3 / "urdf" / "example_3.urdf").read_text()
+    assert ["world", "base_link"] == out["tf_static"][0][:2]
+    # /tf at the last joint state gives MuJoCo's pose of end_arm_link
+    frames = {child: (parent, tr, rot) for parent, child, _, tr, rot in out["tf"]}
+    frames["base_link"] = ("world", *out["tf_static"][0][2:])
+    chain, link = [], "end_arm_link"
+    while link != "world":
+        parent, tr, rot = frames[link]
+        chain.insert(0, (tr, rot))
+        link = parent
+    position, _ = compose(chain)
+    tf_time = out["tf"][0][2]
+    angles = [s[1] for s in out["states"] if abs(s[0] - tf_time) < 1e-6][0]
+    model = sw2sim.load_package(ported_example_3).compile()
+    data = mujoco.MjData(model)
+    for name, value in angles.items():
+        data.qpos[model.jnt_qposadr[model.joint(name).id]] = value
+    mujoco.mj_kinematics(model, data)
+    assert np.allclose(position, data.body("end_arm_link").xpos, atol=1e-4)
+    # the trajectory controller's state
+    state = out["controller_state"]["middle_arm_controller"]
+    assert state["joints"] == ["middle_arm_joint"]
+    assert math.isclose(state["reference"][0], 0.5, abs_tol=1e-9)
+    assert abs(state["error"][0]) < 0.01 and abs(state["feedback"][0] - 0.5) < 0.01
+    assert len(state["output"]) == 1
