@@ -107,6 +107,12 @@ def port(source: str | os.PathLike | Package, out: str | os.PathLike, *,
     for rel in _mesh_files(package.root):
         files[rel] = package.root / rel
     files.update(rewritten.meshes)
+    empty = [rel for rel, path in rewritten.meshes.items()
+             if path.suffix.lower() == ".stl" and path.stat().st_size <= 84]
+    if empty:
+        choices.append(f"{', '.join(empty)}: empty (an STL header and no triangles), copied as "
+                       "it is; Gazebo, RViz and MuJoCo show nothing for it. Export the part "
+                       "again (`sw2sim check` on the source says how).")
     files[f"urdf/{new_name}.urdf"] = rewritten.text
     files["config/controllers.yaml"] = controllers.yaml_text(planned, new_name)
     rviz_file = rviz.find(package.root)

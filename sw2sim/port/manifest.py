@@ -8,7 +8,7 @@ source's where catkin_pkg would accept them; what is replaced is reported.
 from __future__ import annotations
 
 import re
-from xml.sax.saxutils import escape, quoteattr
+from html import escape
 
 from lxml import etree
 
@@ -67,7 +67,7 @@ def package_xml(name: str, manifest: etree._Element | None, controller_packages:
              f"  <name>{escape(name)}</name>",
              f"  <version>{version}</version>",
              f"  <description>{escape(description)}</description>",
-             *(f"  <maintainer email={quoteattr(email)}>{escape(who)}</maintainer>"
+             *(f"  <maintainer email=\"{escape(email)}\">{escape(who)}</maintainer>"
                for who, email in maintainers),
              *(f"  <license>{escape(lic)}</license>" for lic in licenses),
              "",
