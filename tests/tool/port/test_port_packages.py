@@ -76,7 +76,9 @@ def installed(workspace):
                AMENT_PREFIX_PATH=str(VENV), CMAKE_PREFIX_PATH=str(VENV))
     done = subprocess.run([COLCON, "--log-base", str(top / "log"), "build",
                            "--base-paths", str(top / "src"), "--build-base", str(top / "build"),
-                           "--install-base", str(top / "install")],
+                           "--install-base", str(top / "install"),
+                           # a package per core (colcon-parallel-executor)
+                           "--executor", "parallel", "--parallel-workers", str(os.cpu_count() or 2)],
                           cwd=top, env=env, capture_output=True, text=True, timeout=300)
     assert done.returncode == 0, done.stdout[-3000:] + done.stderr[-3000:]
     return top / "install"
