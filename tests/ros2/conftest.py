@@ -38,6 +38,8 @@ class Ros2:
         self.env.update(ROS_HOME=str(home), ROS_LOG_DIR=str(home / "log"),
                         PYTHONUNBUFFERED="1")
         self.home = home
+        self.here = HERE
+        self.group_alive = group_alive
         self.processes: list[subprocess.Popen] = []
 
     def start(self, *command: str, name: str, **kwargs) -> subprocess.Popen:

@@ -32,9 +32,10 @@ def test_an_independent_node_drives_the_arm_and_sees_mujocos_kinematics(ros2, po
     assert out["clock"] == sorted(out["clock"]) and out["clock"][-1] > out["clock"][0] + 3.5
     t, q, v = out["states"][-1]
     assert abs(q["middle_arm_joint"] - 0.5) < 0.01 and abs(q["end_arm_joint"] + 0.3) < 0.01
-    # reached by the time the trajectory ends, from a linear reference (not before it)
-    halfway = [s for s in out["states"] if s[0] >= out["sent_at"] + 1.0][0]
-    assert 0.1 < halfway[1]["middle_arm_joint"] < 0.4
+    # on the way for about the trajectory's 2 s (a linear reference), not a jump to it
+    began = next(s[0] for s in out["states"] if s[1]["middle_arm_joint"] > 0.05)
+    arrived = next(s[0] for s in out["states"] if s[1]["middle_arm_joint"] > 0.45)
+    assert 1.5 < arrived - began < 2.2
     # /robot_description is the URDF; /tf_static holds the fixed joint
     assert out["description"] == (ported_example_3 / "urdf" / "example_3.urdf").read_text()
     assert ["world", "base_link"] == out["tf_static"][0][:2]

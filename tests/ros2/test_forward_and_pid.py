@@ -1,0 +1,49 @@
+"""A velocity forward command controller and a pid_controller, from an independent node."""
+
+from __future__ import annotations
+
+import shutil
+
+YAML = """\
+controller_manager:
+  ros__parameters:
+    update_rate: 1000
+    joint_state_broadcaster: {type: joint_state_broadcaster/JointStateBroadcaster}
+    middle_pid: {type: pid_controller/PidController}
+    end_velocity: {type: velocity_controllers/JointGroupVelocityController}
+joint_state_broadcaster:
+  ros__parameters: {update_rate: 50}
+middle_pid:
+  ros__parameters:
+    dof_names: [middle_arm_joint]
+    command_interface: effort
+    reference_and_state_interfaces: [position, velocity]
+    gains:
+      middle_arm_joint: {p: 100.0, i: 10.0, d: 10.0, i_clamp_max: 0.5, i_clamp_min: -0.5}
+end_velocity:
+  ros__parameters: {joints: [end_arm_joint]}
+"""
+
+
+def test_velocity_commands_and_a_pid_reference(ros2, ported_example_3, tmp_path):
+    package = tmp_path / "example_3"
+    shutil.copytree(ported_example_3, package)
+    (package / "config" / "controllers.yaml").write_text(YAML)
+    urdf = package / "urdf" / "example_3.urdf"
+    text = urdf.read_text()
+    end = text.index('<joint name="end_arm_joint">', text.index("<ros2_control"))
+    text = text[:end] + text[end:].replace('<command_interface name="effort">',
+                                           '<command_interface name="velocity">', 1)
+    urdf.write_text(text)
+    ros2.standin(package)
+    out = ros2.record("2.5", "--commands", "end_velocity", "0.2",
+                      "--reference", "middle_pid", "middle_arm_joint", "0.4",
+                      "--state", "middle_pid", "pid")
+    t, q, v = out["states"][-1]
+    assert abs(v["end_arm_joint"] - 0.2) < 0.01
+    earlier = [s for s in out["states"] if s[0] <= t - 0.5][-1]   # moving at 0.2 rad/s
+    assert abs((q["end_arm_joint"] - earlier[1]["end_arm_joint"]) / (t - earlier[0]) - 0.2) < 0.01
+    assert abs(q["middle_arm_joint"] - 0.4) < 0.01
+    state = out["controller_state"]["middle_pid"][0]
+    assert state["name"] == "middle_arm_joint" and state["reference"] == 0.4
+    assert abs(state["error"]) < 0.01
