@@ -14,10 +14,11 @@ PORT    ?= 4000
 # building the same site again (tests/jekyll.py).
 SITE_LOG := .cache/jekyll-build.log
 
-# Debian packages the site, the renderer, the URDF checks and the site's link checker need.
+# Debian packages the site, the renderer, the URDF checks, the site's link checker and the
+# ROS 2 loopback test (strace) need.
 APT_PACKAGES := jekyll ruby-jekyll-seo-tag ruby-jekyll-sitemap bundler \
                 ruby-kramdown-parser-gfm ruby-webrick libosmesa6 liburdfdom-tools \
-                ruby-html-proofer
+                ruby-html-proofer strace
 
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
