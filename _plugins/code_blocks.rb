@@ -6,7 +6,10 @@
 #   - the language (`python`, `bash`, ...), or the file the block shows when the block
 #     carries `data-file` (a link when the file is published, e.g. under examples/);
 #   - a "Not run here: <reason>" badge when the block carries `data-skip`;
-#   - a note that the tests run the block under ROS 1 when it carries `data-ros`.
+#   - a note that the tests run the block under ROS 1 when it carries `data-ros`;
+#   - a note that the tests run the block under ROS 2 when it carries `data-ros2`;
+#   - a "Not run here, needs: <what>" badge when it carries `data-ros2-needs` (a command
+#     for a machine with ROS 2 Jazzy and Gazebo Sim, which the site's tests do not have).
 #
 # Both attributes come from a kramdown attribute line right after the closing fence:
 #
@@ -37,7 +40,8 @@ module Sw2simSite
         attrs_text = Regexp.last_match(1)
         inner_open = Regexp.last_match(2)
         attrs = attrs_text.scan(ATTRIBUTE).to_h
-        "<div#{attrs_text}>#{header(attrs, site)}#{skip_badge(attrs)}#{ros_badge(attrs, site)}#{inner_open}"
+        "<div#{attrs_text}>#{header(attrs, site)}#{skip_badge(attrs)}#{needs_badge(attrs)}" \
+          "#{ros_badge(attrs, site)}#{ros2_badge(attrs, site)}#{inner_open}"
       end.gsub(PRE_OPEN, PRE_FOCUSABLE)
     end
 
@@ -71,6 +75,13 @@ module Sw2simSite
       %(<div class="code-skip"><strong>Not run here:</strong>#{detail}</div>)
     end
 
+    def needs_badge(attrs)
+      return "" unless attrs.key?("data-ros2-needs")
+
+      %(<div class="code-skip code-needs"><strong>Not run here, needs:</strong> ) +
+        %(#{attrs["data-ros2-needs"].strip}</div>)
+    end
+
     # The page the note links to explains the stand-in the tests run ROS blocks with.
     ROS_PAGE = "/reference/ros-without-gazebo/"
 
@@ -80,6 +91,17 @@ module Sw2simSite
       href = "#{site.baseurl.to_s.chomp("/")}#{ROS_PAGE}"
       %(<div class="code-ros">Run by the site's tests under ROS 1, with MuJoCo in Gazebo's place ) +
         %((<a href="#{href}">how</a>)</div>)
+    end
+
+    # The ROS 2 track's entry page says what stands in for Gazebo Sim here.
+    ROS2_PAGE = "/reference/ros1-to-ros2/"
+
+    def ros2_badge(attrs, site)
+      return "" unless attrs.key?("data-ros2")
+
+      href = "#{site.baseurl.to_s.chomp("/")}#{ROS2_PAGE}#here-sw2sim-ros2"
+      %(<div class="code-ros code-ros2">Run by the site's tests under ROS 2 (rclpy), with MuJoCo in ) +
+        %(Gazebo Sim's place (<a href="#{href}">how</a>)</div>)
     end
   end
 end

@@ -98,7 +98,7 @@ def build(path: Path, root: Path = ROOT) -> NotebookNode:
         prose += _markdown(body[cursor:start], cursor, page, root)
         cursor = end + 1 if block.attributes is not None else end
         shown = block.data_file or block.include
-        if block.skip is not None or block.ros:
+        if block.skip is not None or block.ros or block.ros2:
             prose += _skipped(block, shown)
             continue
         if shown:
@@ -144,12 +144,13 @@ def _introduction(front: dict, page: Page) -> str:
 
 
 ROS_NODE = "it is a ROS 1 node, which the page's commands start under ROS"
+ROS2_NODE = "it is a ROS 2 node, which the page's commands start under ROS 2"
 
 
 def _skipped(block: Block, shown: str | None) -> list[str]:
     what = f"The file `{shown}` is" if shown else "This code is"
     fence = "````" if "```" in block.code else "```"
-    reason = block.skip or ROS_NODE
+    reason = block.skip or (ROS2_NODE if block.ros2 else ROS_NODE)
     return ["", f"> {what} not run in this notebook: {reason}. Read it here, and run it "
             "where that is available.", "", fence + "python", block.code.rstrip("\n"), fence]
 

@@ -1,5 +1,8 @@
 """Find the ```python blocks of a lesson page, with their page lines and skip reasons,
-and the blocks that run under ROS 1 (`data-ros`, python or bash) for course.snippets.ros.
+the blocks that run under ROS 1 (`data-ros`, python or bash) for course.snippets.ros, and
+those that run under ROS 2 (`data-ros2`) for course.snippets.ros2. A block marked
+`data-ros2-needs="WHAT"` is shown only: it needs what this machine lacks (ROS 2 Jazzy's
+`ros2` command, Gazebo Sim), and a python block so marked is skipped with that reason.
 
 The parse also records where the page's other syntax is, for course.notebooks to turn the
 rest of the page into notebook Markdown: every code listing and its attribute line,
@@ -21,6 +24,8 @@ LANGUAGE = "python"
 _IAL = re.compile(r"^\s*(?:>\s*)*\{:(?P<body>.*)\}\s*$")
 _SKIP = re.compile(r"""(?<![\w-])data-skip\s*=\s*(?:"(?P<dq>[^"]*)"|'(?P<sq>[^']*)')""")
 _DATA_ROS = re.compile(r"""(?<![\w-])data-ros\s*=\s*(?:"(?P<dq>[^"]*)"|'(?P<sq>[^']*)')""")
+_DATA_ROS2 = re.compile(r"""(?<![\w-])data-ros2\s*=\s*(?:"(?P<dq>[^"]*)"|'(?P<sq>[^']*)')""")
+_ROS2_NEEDS = re.compile(r"""(?<![\w-])data-ros2-needs\s*=\s*(?:"(?P<dq>[^"]*)"|'(?P<sq>[^']*)')""")
 _ROS_LANGUAGES = (LANGUAGE, "bash")
 _ROS_RUNNING = re.compile(r"^ros_running\s*:\s*(?P<value>.+?)\s*(?:#.*)?$")
 _DATA_FILE = re.compile(r"""(?<![\w-])data-file\s*=\s*(?:"(?P<dq>[^"]*)"|'(?P<sq>[^']*)')""")
@@ -50,6 +55,8 @@ class Block:
     data_file: str | None = None  # its `data-file="..."`: the file shown above the block
     # its `data-ros="PACKAGE"`: it runs under ROS 1 in that example package, not in Python
     ros: str | None = None
+    # its `data-ros2="PACKAGE"`: it runs under ROS 2 with the package `sw2sim port` wrote
+    ros2: str | None = None
     language: str = LANGUAGE
 
     @property
@@ -93,16 +100,25 @@ class Page:
     commands: list[Block] = field(default_factory=list)  # ```bash blocks with data-ros
     # Front matter `ros_running: roslaunch PKG FILE`: what the page assumes already runs.
     ros_running: str | None = None
+    ros2_commands: list[Block] = field(default_factory=list)  # ```bash blocks with data-ros2
+    # Blocks of any language marked data-ros2-needs="WHAT": (block, WHAT). Shown, not run.
+    ros2_needs: list[tuple[Block, str]] = field(default_factory=list)
 
     @property
     def runnable(self) -> list[Block]:
         """The python blocks the page runner runs."""
-        return [b for b in self.blocks if b.skip is None and b.ros is None]
+        return [b for b in self.blocks if b.skip is None and b.ros is None and b.ros2 is None]
 
     @property
     def ros_blocks(self) -> list[Block]:
         """The blocks that run under ROS 1, python and bash, in page order."""
         return sorted([b for b in self.blocks if b.ros] + self.commands, key=lambda b: b.line)
+
+    @property
+    def ros2_blocks(self) -> list[Block]:
+        """The blocks that run under ROS 2, python nodes and bash commands, in page order."""
+        return sorted([b for b in self.blocks if b.ros2] + self.ros2_commands,
+                      key=lambda b: b.line)
 
     @property
     def skipped(self) -> list[Block]:
@@ -221,6 +237,19 @@ class _Scan:
                 self.attached.add(end)
             info = token.info.strip()
             ros = self.ros_package(ial, info, end)
+            ros2 = self.ros2_package(ial, info, end)
+            needs = self.ros2_needs(ial, end)
+            if needs:
+                self.page.ros2_needs.append((Block(self.page.path, start + 2,
+                                                   without_raw_tags(token.content),
+                                                   fence=(start, end), attributes=end,
+                                                   language=info), needs))
+            if info == "bash" and ros2:
+                code = without_raw_tags(token.content)
+                self.page.ros2_commands.append(Block(self.page.path, start + 2, code,
+                                                     fence=(start, end), attributes=end,
+                                                     ros2=ros2, language="bash"))
+                continue
             if info == "bash" and ros:
                 code = without_raw_tags(token.content)
                 self.page.commands.append(Block(self.page.path, start + 2, code, fence=(start, end),
@@ -239,12 +268,15 @@ class _Scan:
             protected = any(a <= end - 1 and b >= start for a, b in raw)
             block = self.block(token.content, start, end, protected)
             if block is not None:
+                if needs and block.skip is None:
+                    block = replace(block, skip=f"needs {needs}")
                 self.page.blocks.append(replace(block, fence=(start, end), attributes=end if ial else None,
-                                                data_file=self.page.data_files.get(start), ros=ros))
+                                                data_file=self.page.data_files.get(start), ros=ros,
+                                                ros2=ros2))
 
     def ros_package(self, ial, info: str, end: int) -> str | None:
         """The package a block's `data-ros="PACKAGE"` names, or None; mistakes are errors."""
-        if not ial or "data-ros" not in ial["body"]:
+        if not ial or not re.search(r"(?<![\w-])data-ros\s*=", ial["body"]):
             return None
         r = _DATA_ROS.search(ial["body"])
         package = (r["dq"] if r["dq"] is not None else r["sq"]).strip() if r else ""
@@ -264,6 +296,42 @@ class _Scan:
             self.error(end + 1, f"data-ros: no package examples/{package.split('/')[0]}")
             return None
         return package
+
+    def ros2_package(self, ial, info: str, end: int) -> str | None:
+        """The package a block's `data-ros2="PACKAGE"` names (the folder `sw2sim port`
+        writes), or None; mistakes are errors."""
+        if not ial or not re.search(r"(?<![\w-])data-ros2\s*=", ial["body"]):
+            return None
+        r = _DATA_ROS2.search(ial["body"])
+        package = (r["dq"] if r["dq"] is not None else r["sq"]).strip() if r else ""
+        if not re.fullmatch(r"[A-Za-z]\w*", package):
+            self.error(end + 1, 'data-ros2 names the ROS 2 package the block works with, as '
+                                '`sw2sim port` writes it: {: data-ros2="example_3"}')
+            return None
+        if info not in _ROS_LANGUAGES:
+            self.error(end + 1, f"data-ros2 is for ```python nodes and ```bash commands, not {info!r}")
+            return None
+        for other in ("data-skip", "data-ros2-needs", "data-ros"):
+            if re.search(rf"(?<![\w-]){other}\s*=", ial["body"]):
+                self.error(end + 1, f"a block has data-ros2 (it runs under ROS 2 here) or {other}, "
+                                    "not both")
+                return None
+        return package
+
+    def ros2_needs(self, ial, end: int) -> str | None:
+        """What a block marked `data-ros2-needs="WHAT"` needs, or None."""
+        if not ial or "data-ros2-needs" not in ial["body"]:
+            return None
+        n = _ROS2_NEEDS.search(ial["body"])
+        what = (n["dq"] if n["dq"] is not None else n["sq"]).strip() if n else ""
+        if not what:
+            self.error(end + 1, 'data-ros2-needs says what the block needs: '
+                                '{: data-ros2-needs="ros2 launch and Gazebo Sim"}')
+            return None
+        if "data-skip" in ial["body"]:
+            self.error(end + 1, "a block has data-ros2-needs or data-skip, not both")
+            return None
+        return what
 
     def block(self, content: str, start: int, end: int, protected: bool) -> Block | None:
         """The Block of a python fence over 0-based lines [start, end), or None on error."""
