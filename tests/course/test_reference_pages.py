@@ -125,7 +125,7 @@ def test_blocks_parse_and_the_ros_2_files_are_never_run():
     check = blocks["01-getting-started.md"].runnable[0].code
     assert 'load_package("examples/example_1")' in check
     ros2 = blocks["05-ros1-to-ros2.md"]
-    assert len(ros2.blocks) == 3 and not ros2.runnable
+    assert len(ros2.blocks) == 1 and not ros2.runnable
     assert all("ROS 2 Jazzy" in block.skip for block in ros2.skipped)
     assert len(blocks["02-exporter.md"].runnable) == 3
 
@@ -181,117 +181,81 @@ def test_exporter_page_facts():
 
 
 @pytest.fixture(scope="module")
-def ros2():
+def ros2(tmp_path_factory):
+    """The page's text, its blocks, and what `sw2sim port examples/example_3` writes."""
+    from sw2sim.port import port
     text = page("05-ros1-to-ros2.md")
-    xml = xml_blocks(text)
-    manifest = etree.fromstring(xml[0].encode())
-    urdf_end = etree.fromstring(f"<robot>{xml[1]}</robot>".encode())
-    (controllers,) = [yaml.safe_load(block) for block in fenced_blocks(text, "yaml")]
-    (cmake,) = fenced_blocks(text, "cmake")
+    out = tmp_path_factory.mktemp("port") / "example_3"
+    port(EXAMPLE_3, out)
+    files = {name: (out / name).read_text(encoding="utf-8") for name in
+             ("package.xml", "CMakeLists.txt", "urdf/example_3.urdf", "config/controllers.yaml",
+              "launch/gazebo.launch.py")}
     python = [block.code for block in parse_page(PAGES / "05-ros1-to-ros2.md", ROOT).blocks]
-    return text, manifest, urdf_end, controllers, cmake, python
+    return text, files, python
+
+
+def _without_comments(yaml_text: str) -> str:
+    return "\n".join(line for line in yaml_text.splitlines()
+                     if not line.lstrip().startswith("#")).strip()
 
 
 def test_ros2_page_targets_jazzy(ros2):
     text = ros2[0]
-    assert "ROS 2\nJazzy" in text or "ROS 2 Jazzy" in text
-    assert "Gazebo Harmonic" in text
+    assert "ROS 2 Jazzy" in squash(text) and "Gazebo Sim" in text
+    for n in practice_numbers():
+        assert f"](/practice-{n}/ros2/)" in text, n
 
 
-def test_ros2_files_are_well_formed(ros2):
-    _, manifest, _, controllers, cmake, python = ros2
-    assert manifest.get("format") == "3"
-    for code in python:
-        ast.parse(code)
-    assert set(controllers) >= {"controller_manager", "middle_arm_controller", "end_arm_controller"}
-    assert cmake.strip().endswith("ament_package()")
-
-
-def test_ros2_manifest_names_what_the_files_use(ros2):
-    _, manifest, urdf_end, controllers, _, python = ros2
-    assert manifest.findtext("name") == "example_3"
-    assert manifest.findtext("buildtool_depend") == "ament_cmake"
-    assert manifest.findtext("export/build_type") == "ament_cmake"
-    depends = {e.text for e in manifest.iter("exec_depend")}
-    used = set()
-    for code in python:
-        for node in ast.walk(ast.parse(code)):
-            if (isinstance(node, ast.keyword) and node.arg == "package"
-                    and isinstance(node.value, ast.Constant)):
-                used.add(node.value.value)
-            if isinstance(node, ast.ImportFrom) and node.module:
-                used.add(node.module.split(".")[0])
-            if isinstance(node, ast.Import):
-                used |= {alias.name.split(".")[0] for alias in node.names}
-        if '"xacro "' in code:
-            used.add("xacro")
-    types = [c["type"] for c in controllers["controller_manager"]["ros__parameters"].values()
-             if isinstance(c, dict)]
-    used |= {kind.split("/")[0] for kind in types}
-    used.add(urdf_end.find("gazebo/plugin").get("filename").removesuffix("-system"))
-    used -= {"example_3", *sys.stdlib_module_names}
-    assert used <= depends, f"used but not in package.xml: {sorted(used - depends)}"
-
-
-def test_ros2_control_joints_and_limits_are_the_urdfs(ros2):
-    _, _, urdf_end, _, _, _ = ros2
-    limits = read_joint_limits(EXAMPLE_3)
-    joints = urdf_end.findall("ros2_control/joint")
-    assert [j.get("name") for j in joints] == list(limits)
-    for joint in joints:
-        effort = limits[joint.get("name")].effort
-        command = joint.find("command_interface")
-        assert command.get("name") == "effort"
-        params = {p.get("name"): float(p.text) for p in command.findall("param")}
-        assert params == {"min": -effort, "max": effort}
-        states = [s.get("name") for s in joint.findall("state_interface")]
-        assert states[:2] == ["position", "velocity"]
-    assert urdf_end.findtext("ros2_control/hardware/plugin") == "gz_ros2_control/GazeboSimSystem"
-    plugin = urdf_end.find("gazebo/plugin")
-    assert plugin.get("filename") == "gz_ros2_control-system"
-    assert plugin.findtext("parameters") == "$(find example_3)/config/ros2_controllers.yaml"
+def test_ros2_page_shows_what_the_port_writes(ros2):
+    """Every file the page shows is the port's, as `sw2sim port` writes it for example_3."""
+    text, files, python = ros2
+    manifest, urdf_end = xml_blocks(text)
+    assert manifest == files["package.xml"]
+    (cmake,) = fenced_blocks(text, "cmake")
+    assert cmake == files["CMakeLists.txt"]
+    assert squash(urdf_end) in squash(files["urdf/example_3.urdf"])
+    assert squash(files["urdf/example_3.urdf"]).endswith(squash(urdf_end) + "</robot>")
+    (controllers,) = fenced_blocks(text, "yaml")
+    assert controllers.strip() == _without_comments(files["config/controllers.yaml"])
+    (launch,) = python
+    assert launch == files["launch/gazebo.launch.py"]
 
 
 def test_ros2_controllers_keep_practice_3s_gains_and_rates(ros2):
-    _, _, _, controllers, _, python = ros2
+    text, files, _ = ros2
+    controllers = yaml.safe_load(files["config/controllers.yaml"])
     ros1_file = EXAMPLE_3 / "config" / "joint_names_example_3.yaml"
     ros1 = yaml.safe_load(ros1_file.read_text())["example_3"]
     manager = controllers["controller_manager"]["ros__parameters"]
     arm = ROOT / "examples" / "example_3" / "scripts" / "arm_controller.py"
     timestep = float(re.search(r"^TIMESTEP = ([\d.]+)", arm.read_text(), re.M).group(1))
     assert manager["update_rate"] == round(1 / timestep)
+    assert "every controller 1000 times a second, once per 1 ms step" in squash(text)
     rate = controllers["joint_state_broadcaster"]["ros__parameters"]["update_rate"]
     assert rate == ros1["joint_state_controller"]["publish_rate"]
-    position = [name for name, c in ros1.items()
-                if c["type"] == "effort_controllers/JointPositionController"]
-    spawned = re.search(r"CONTROLLERS = \[(.*?)\]", python[1], re.S).group(1)
-    assert re.findall(r'"(\w+)"', spawned) == ["joint_state_broadcaster", *position]
-    for name in position:
+    for name, c in ros1.items():
+        if c["type"] != "effort_controllers/JointPositionController":
+            continue
         assert manager[name]["type"] == "joint_trajectory_controller/JointTrajectoryController"
         params = controllers[name]["ros__parameters"]
-        joint = ros1[name]["joint"]
+        joint, pid = c["joint"], c["pid"]
         assert params["joints"] == [joint] and params["command_interfaces"] == ["effort"]
-        # Jazzy's trajectory controller has no antiwindup setting (the page says so).
-        assert params["gains"][joint] == {k: v for k, v in ros1[name]["pid"].items()
-                                          if k != "antiwindup"}
-        pid = ros1[name]["pid"]
-        assert pid["i_clamp"] / pid["p"] == pytest.approx(0.005)   # "at most 0.005 rad"
+        gains = params["gains"][joint]
+        assert {k: gains[k] for k in "pid"} == {k: pid[k] for k in "pid"}
+        assert gains["i_clamp_max"] == pid["i_clamp"] == -gains["i_clamp_min"]
 
 
-def test_ros2_node_keeps_within_the_limits(ros2):
-    text, _, _, _, cmake, python = ros2
-    node = python[2]
+def test_ros2_control_joints_and_limits_are_the_urdfs(ros2):
+    text, _, _ = ros2
+    urdf_end = etree.fromstring(f"<robot>{xml_blocks(text)[1]}</robot>".encode())
     limits = read_joint_limits(EXAMPLE_3)
-    limit = float(re.search(r"^LIMIT = ([\d.]+)", node, re.M).group(1))
-    move_time = float(re.search(r"^MOVE_TIME = (\d+)", node, re.M).group(1))
-    assert all(limit == j.upper == -j.lower for j in limits.values())
-    speed = 2 * limit / move_time
-    assert all(speed < j.velocity for j in limits.values())
-    assert f"averages {speed:.2f} rad/s" in text
-    assert "scripts/random_setpoints_node.py" in cmake
-    assert (EXAMPLE_3 / "scripts" / "random_setpoints_node.py").is_file()
-    for folder in re.search(r"install\(DIRECTORY (.*?)\n", cmake).group(1).split():
-        assert (EXAMPLE_3 / folder).is_dir(), folder
+    joints = urdf_end.findall("ros2_control/joint")
+    assert [j.get("name") for j in joints] == list(limits)
+    for joint in joints:
+        effort = limits[joint.get("name")].effort
+        params = {p.get("name"): float(p.text) for p in joint.findall("command_interface/param")}
+        assert params == {"min": -effort, "max": effort}
+        assert f"the URDF's effort limit, {effort:g} N·m" in squash(text)
 
 
 # ---- Glossary -----------------------------------------------------------------------------
