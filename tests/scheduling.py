@@ -11,14 +11,15 @@ SHARED_SESSION_FOLDERS = ("tests/site/browser/",)
 
 # Modules whose tests are long and share nothing: each test is a unit of its own, so that
 # the workers split them (every ROS page runs its own master and simulation).
-SPLIT_MODULES = ("tests/ros/test_page_blocks.py",)
+SPLIT_MODULES = ("tests/ros/test_page_blocks.py", "tests/ros2/test_page_blocks.py")
 
 
 # Tests that spend most of their time waiting on processes of their own (a ROS master,
-# roslaunch, a simulation running at ten times real time): the first worker takes them
+# roslaunch, a simulation running at ten times real time, `sw2sim ros2` at one to five
+# times real time with the ROS 2 pages' nodes): the first worker takes them
 # from the start, while the others run tests that keep a core busy; the waits then fill
 # with the others' work instead of idling the machine at the end of the run.
-WAITING_FOLDERS = ("tests/ros/",)
+WAITING_FOLDERS = ("tests/ros/", "tests/ros2/")
 
 
 def scope_of(nodeid: str) -> str:
