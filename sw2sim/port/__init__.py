@@ -94,7 +94,8 @@ def port(source: str | os.PathLike | Package, out: str | os.PathLike, *,
     ros1, read = controllers.find_ros1_controllers(package.root)
     try:
         planned = controllers.plan(ros1, joints, effort_joints=effort,
-                                   update_rate=max(1, round(1 / period)) if period else None)
+                                   update_rate=max(1, round(1 / period)) if period else None,
+                                   state_rate=urdf.joint_state_rate(robot))
     except controllers.Conflict as exc:
         raise PortError(f"{exc}. Leave the joint out of --effort-joints, or remove one of the "
                         "controllers from the ROS 1 YAML.") from None

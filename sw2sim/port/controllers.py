@@ -21,6 +21,7 @@ import yaml
 
 from ..errors import LoadError
 
+STATE_RATE = 50      # Hz: /joint_states when nothing says how often
 UPDATE_RATE = 1000   # Hz: Gazebo Classic's default step is 1 ms, and gazebo_ros_control ran the
                      # controllers at every step unless <controlPeriod> said otherwise
 JOINT_STATE = "joint_state_broadcaster"
@@ -108,7 +109,7 @@ def _collect(data, node, file: str, found: list) -> None:
 
 # -- mapping ------------------------------------------------------------------------------
 def plan(ros1: list[Ros1Controller], joints: dict[str, str], *, update_rate: int | None,
-         effort_joints: list[str]) -> Plan:
+         effort_joints: list[str], state_rate: float | None = None) -> Plan:
     """The ROS 2 controllers for the ROS 1 ones, with every decision in `choices`.
     `joints` maps each movable joint of the URDF to its type."""
     result = Plan()
@@ -128,11 +129,16 @@ def plan(ros1: list[Ros1Controller], joints: dict[str, str], *, update_rate: int
                                   f"`{extra.name}` was left out; one joint_state_broadcaster "
                                   "publishes every joint.")
     else:
-        result.controllers.append(Controller(JOINT_STATE,
-                                             "joint_state_broadcaster/JointStateBroadcaster"))
+        added = Controller(JOINT_STATE, "joint_state_broadcaster/JointStateBroadcaster")
+        added.parameters["update_rate"] = max(1, round(state_rate or STATE_RATE))
+        result.controllers.append(added)
+        why = ("the gazebo_ros joint_state_publisher plugin's <updateRate>" if state_rate
+               else "ROS 1's usual publish_rate; without one it would publish at the "
+                    "controller manager's rate")
         result.choices.append("joint_state_broadcaster was added (the package has no joint "
                               "state controller): in Gazebo Sim it is what publishes "
-                              "/joint_states for robot_state_publisher.")
+                              "/joint_states for robot_state_publisher. It publishes "
+                              f"{added.parameters['update_rate']} times a second ({why}).")
     for c in ros1:
         if c in state:
             continue

@@ -97,6 +97,18 @@ def control_period(robot: etree._Element) -> float | None:
     return None
 
 
+def joint_state_rate(robot: etree._Element) -> float | None:
+    """The gazebo_ros joint_state_publisher plugin's <updateRate> (Hz), when it gives one."""
+    for plugin in robot.findall("gazebo/plugin"):
+        if plugin.get("filename", "").endswith(JOINT_STATE_PLUGIN):
+            try:
+                value = float((plugin.findtext("updateRate") or "").strip())
+            except ValueError:
+                return None
+            return value if value > 0 else None
+    return None
+
+
 @dataclass
 class Rewrite:
     text: str

@@ -7,7 +7,7 @@ import pytest
 from lxml import etree
 
 from packages import copy_example, edit
-from sw2sim.port import PortError, controllers, naming, port
+from sw2sim.port import PortError, controllers, naming, port, urdf
 from sw2sim.port.controllers import Ros1Controller
 
 JOINTS = {"a": "revolute", "b": "revolute", "wheel": "continuous", "steer": "revolute"}
@@ -49,6 +49,21 @@ def test_a_broadcaster_is_added_when_the_source_has_none():
     plan = _plan()
     assert plan.names == ["joint_state_broadcaster"]
     assert any("was added" in c for c in plan.choices)
+    # Without a rate of its own it would publish at the controller manager's 1000 Hz.
+    assert plan.controllers[0].parameters == {"update_rate": controllers.STATE_RATE}
+
+
+def test_an_added_broadcaster_keeps_the_gazebo_joint_state_publishers_rate():
+    """Practice 1's URDF has gazebo_ros' joint_state_publisher at <updateRate>50</updateRate>;
+    its broadcaster publishes as often."""
+    robot = etree.fromstring(
+        '<robot name="r"><gazebo><plugin name="jsp" filename="libgazebo_ros_joint_state_publisher.so">'
+        "<updateRate>25</updateRate></plugin></gazebo></robot>")
+    rate = urdf.joint_state_rate(robot)
+    assert rate == 25
+    plan = controllers.plan([], JOINTS, update_rate=None, effort_joints=[], state_rate=rate)
+    assert plan.controllers[0].parameters == {"update_rate": 25}
+    assert any("<updateRate>" in c for c in plan.choices)
 
 
 def test_effort_position_pid_becomes_a_trajectory_controller_with_jazzy_gain_keys():
@@ -120,7 +135,7 @@ def test_effort_joints_share_one_group_controller_and_conflicts_are_refused():
 def test_the_yaml_has_the_controller_manager_section_first():
     plan = _plan(_c("x", "effort_controllers/JointEffortController", joint="a"))
     data = yaml.safe_load(controllers.yaml_text(plan, "pkg"))
-    assert list(data) == ["controller_manager", "x"]
+    assert list(data) == ["controller_manager", "joint_state_broadcaster", "x"]
     manager = data["controller_manager"]["ros__parameters"]
     assert manager == {"update_rate": 1000,
                        "joint_state_broadcaster": {"type": "joint_state_broadcaster/"
