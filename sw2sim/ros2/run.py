@@ -137,6 +137,8 @@ def _serve(package, setup, domain, duration, realtime, view, stop, parent, say) 
         say(f"sw2sim ros2: {shown(package.root) or package.root} on ROS_DOMAIN_ID={domain} "
             "(this machine only: ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST), MuJoCo standing in "
             "for Gazebo Sim, gz_ros2_control and robot_state_publisher")
+        say(f"sw2sim ros2: in the terminals of your nodes: export ROS_DOMAIN_ID={domain} "
+            "ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST")
         sim.start()
         executor = SingleThreadedExecutor(context=context)
         executor.add_node(node)
