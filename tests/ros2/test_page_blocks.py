@@ -67,7 +67,7 @@ def _series(record: dict, field: str, joint: str) -> tuple[np.ndarray, np.ndarra
 
 
 def _wheel_pulses(record: dict) -> None:
-    """Practice 1: each pulse adds about 62.6 rad/s to every wheel (within 1 %)."""
+    """Practice 1: each pulse adds about 62.6 rad/s to every wheel (within the page's 2 %)."""
     page = "_pages/practice-1/06-ros2.md"
     step = _page_number(page, r"Each pulse adds about ([\d.]+) rad/s")
     share = _page_number(page, r"accept (\d+) %") / 100
@@ -85,13 +85,15 @@ def _friction_and_pulses(record: dict) -> None:
     reach about 18.8 rad/s and stand still about 0.43 s after the pulse."""
     page = "_pages/practice-2/05-ros2.md"
     free = _page_number(page, r"gain about ([\d.]+) rad/s")
+    # the pulse's length: Practice 1's node, so Practice 1's page says how close
+    share = _page_number("_pages/practice-1/06-ros2.md", r"accept (\d+) %") / 100
     peak = _page_number(page, r"reach about ([\d.]+) rad/s")
     stops = _page_number(page, r"stand still again about ([\d.]+) s later")
     end = record["start"] + PULSE
     for joint in ("rear_left_joint", "rear_right_joint"):
         t, speed = _series(record, "speeds", joint)
         after = speed[t > end + 0.2]
-        assert abs(after.mean() - free) < 0.01 * free, (joint, after.mean())
+        assert abs(after.mean() - free) < share * free, (joint, after.mean())
     for joint in ("front_left_joint", "front_right_joint"):
         t, speed = _series(record, "speeds", joint)
         assert abs(speed.max() - peak) < 0.02 * peak, (joint, speed.max())
