@@ -10,7 +10,7 @@ JOINT moves (a node's one message may come before this recorder has found its pu
 the motion it causes cannot).
 
 {"start": t, "states": [[t, {joint: position}], ...], "speeds": [[t, {joint: velocity}], ...],
- "topics": {topic: [[t, value], ...]}}
+ "topics": {topic: [[t, value], ...]}, "graph": {topic: [type, ...]}}
 
 A plain rclpy node in a process of its own, independent of what it records (it imports
 nothing of sw2sim); the ROS 2 page tests start it before the page's blocks.
@@ -80,6 +80,8 @@ def main() -> int:
         if record["start"] and now() >= record["start"] + seconds:
             break
     done = bool(record["start"]) and now() >= record["start"] + seconds
+    # The topics of the run and their types, as `ros2 topic list -t` would list them.
+    record["graph"] = {name: types for name, types in node.get_topic_names_and_types()}
     print(json.dumps(record))
     node.destroy_node()
     rclpy.try_shutdown()

@@ -2,7 +2,7 @@
 real rclpy, with `sw2sim ros2` in Gazebo Sim's place (course/snippets/ros2.py); what each
 page says the robot does is checked on what an independent recorder (record.py, a plain
 rclpy node) sees, and every `ros2 topic` command the page shows for Jazzy names a topic
-the run has, with its type."""
+the run has, with its type and the message's fields (jazzy_commands.py)."""
 
 from __future__ import annotations
 
@@ -21,6 +21,7 @@ import pytest
 
 from course.snippets import find_pages, parse_page
 from course.snippets.ros2 import Ros2BlockError, Session
+from jazzy_commands import jazzy_commands, topic_problems
 from repository import ROOT
 
 RECORD = Path(__file__).with_name("record.py")
@@ -231,6 +232,9 @@ def test_page_ros2_blocks(path, tmp_path, record_property):
             record = json.loads(out.splitlines()[-1])
             session.check()
             claim(record)
+            # What the page's lines for Jazzy name is what this run had.
+            problems = [p for c in jazzy_commands(page) for p in topic_problems(c, record["graph"])]
+            assert not problems, "\n".join(problems)
         except Ros2BlockError as error:
             fault = str(error)
         finally:
