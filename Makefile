@@ -107,18 +107,29 @@ $(STAMPS)/ros: Makefile $(STAMPS)/venv
 	@mkdir -p $(STAMPS) && touch $@
 
 # ROS 2 Jazzy's Python side, from PyPI (requirements-ros2.txt): rclpy over Fast DDS, the
-# message packages, colcon and ament_cmake (about 120 MB). The wheels exist for Linux
-# only; where pip finds none for this Python or CPU, this says so and goes on, and the
-# ROS 2 tests are skipped with that reason.
-$(STAMPS)/ros2: requirements-ros2.txt requirements.txt $(STAMPS)/venv
-	@if $(PY) -m pip install -q --disable-pip-version-check -c requirements.txt \
-	        -r requirements-ros2.txt 2>$(STAMPS)/ros2.log; then \
-	    $(PY) -m sw2sim.ros2.messages; \
+# message packages, colcon and ament_cmake (about 120 MB), with this repository's sw2sim,
+# in an environment of its own, .venv-ros2: ROS 2's message packages (std_msgs,
+# sensor_msgs, ...) have the same module names as ROS 1's, which .venv reaches from
+# Debian, and one Python cannot import both. Then the two message packages PyPI lacks
+# (tf2_msgs, control_msgs) are built into it. The wheels exist for Linux only; where pip
+# finds none for this Python or CPU, this says so and goes on, and the ROS 2 tests are
+# skipped with that reason.
+VENV2 := .venv-ros2
+PY2   := $(VENV2)/bin/python
+
+$(STAMPS)/ros2: requirements-ros2.txt requirements.txt pyproject.toml
+	@mkdir -p $(STAMPS)
+	@test -x $(PY2) || python3 -m venv $(VENV2)
+	@if $(PY2) -m pip install -q --disable-pip-version-check -c requirements.txt \
+	        setuptools -r requirements-ros2.txt 2>$(STAMPS)/ros2.log && \
+	    $(PY2) -m pip install -q --disable-pip-version-check -c requirements.txt \
+	        --no-build-isolation -e . 2>>$(STAMPS)/ros2.log; then \
+	    $(PY2) -m sw2sim.ros2.messages; \
 	else \
 	    echo "ROS 2: no wheels of ROS 2 Jazzy for this Python or CPU ($$(tail -1 $(STAMPS)/ros2.log));" \
 	         "the ROS 2 tests will be skipped."; \
 	fi
-	@mkdir -p $(STAMPS) && touch $@
+	@touch $@
 
 $(STAMPS)/npm: package.json package-lock.json
 	npm ci --no-audit --no-fund --loglevel=error
@@ -167,4 +178,4 @@ clean:
 	rm -rf _site .jekyll-cache .pytest_cache .cache/pycache MUJOCO_LOG.TXT assets/vendor
 
 distclean: clean
-	rm -rf $(VENV) node_modules $(STAMPS)
+	rm -rf $(VENV) $(VENV2) node_modules $(STAMPS)

@@ -11,7 +11,7 @@ SHARED_SESSION_FOLDERS = ("tests/site/browser/",)
 
 # Modules whose tests are long and share nothing: each test is a unit of its own, so that
 # the workers split them (every ROS page runs its own master and simulation).
-SPLIT_MODULES = ("tests/ros/test_page_blocks.py", "tests/ros2/test_page_blocks.py")
+SPLIT_MODULES = ("tests/ros/test_page_blocks.py", "tests/ros2/test_ros2_page_blocks.py")
 
 
 # Tests that spend most of their time waiting on processes of their own (a ROS master,

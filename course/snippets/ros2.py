@@ -28,7 +28,6 @@ import os
 import re
 import shutil
 import subprocess
-import sys
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -37,6 +36,10 @@ from typing import Callable
 from .parse import Block, Page, find_pages, parse_page
 from .ros import Command, commands
 
+# The Python environment the entry page has the reader make for ROS 2 (`make setup` makes
+# it in a clone): ROS 2's message packages share their module names with ROS 1's, so they
+# live apart from .venv, which reaches ROS 1 from Debian.
+ENVIRONMENT = ".venv-ros2"
 COMMAND_TIMEOUT = 60.0   # s for a command that ends (sw2sim port included)
 # Simulated seconds per wall second: fast enough to keep the tests short, slow enough for
 # the nodes (which see the clock through /clock) to keep up.
@@ -95,7 +98,8 @@ class Session:
     # -- set-up ------------------------------------------------------------------------
     def prepare(self) -> None:
         """The folder with a copy of each example package the page ports, the logs, and
-        the environment: this Python's scripts first on PATH (`python`, `sw2sim`)."""
+        the environment: the ROS 2 environment's scripts first on PATH (`python`,
+        `sw2sim`), as activating it does."""
         if self.env:
             return
         self.folder.mkdir(parents=True, exist_ok=True)
@@ -108,7 +112,7 @@ class Session:
         self.logs.mkdir(exist_ok=True)
         home = self.folder / "home"
         home.mkdir(exist_ok=True)
-        bin_dir = str(Path(sys.executable).parent)
+        bin_dir = str(self.root / ENVIRONMENT / "bin")
         base = {**os.environ, "PATH": os.pathsep.join([bin_dir, os.environ.get("PATH", "")]),
                 "HOME": str(home), "ROS_HOME": str(home / ".ros"),
                 "ROS_LOG_DIR": str(self.logs / "ros"), "PYTHONUNBUFFERED": "1"}

@@ -7,7 +7,8 @@ from __future__ import annotations
 import importlib.util
 
 INSTALL = ('ROS 2 (rclpy) is not installed for this Python: pip install "sw2sim[ros2]" '
-           '(Linux, Python 3.10-3.12), or `make setup` in a clone of the course')
+           '(Linux, Python 3.10-3.12, in an environment without ROS 1), or in a clone of the '
+           'course `make setup`, then .venv-ros2/bin/sw2sim')
 
 
 def missing() -> str | None:

@@ -6,9 +6,9 @@ from __future__ import annotations
 
 import pytest
 
-from conftest import MISSING
+from sw2sim.ros.run import missing
 
-pytestmark = pytest.mark.skipif(bool(MISSING), reason=str(MISSING))
+pytestmark = pytest.mark.skipif(bool(missing()), reason=str(missing()))
 
 
 class Recorder:

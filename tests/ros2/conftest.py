@@ -1,7 +1,8 @@
 """ROS 2 (rclpy) tests: each test gets a domain id of its own and a ROS home in its
 temporary folder; every process it starts runs in a process group of its own, kept on
 127.0.0.1 (sw2sim.ros2.discovery), and is stopped when the test ends, also when it fails.
-Skipped with sw2sim.ros2.missing()'s reason where rclpy is not installed."""
+They run in the ROS 2 environment, .venv-ros2 (tests/ros2_environment.py), and are skipped
+with its reason where it is missing."""
 
 from __future__ import annotations
 
@@ -16,7 +17,8 @@ from pathlib import Path
 
 import pytest
 
-from sw2sim.ros2 import discovery, missing
+from ros2_environment import PYTHON, missing
+from sw2sim.ros2 import discovery
 
 HERE = Path(__file__).parent
 EXAMPLE_3 = HERE.parents[1] / "examples" / "example_3"
@@ -52,11 +54,11 @@ class Ros2:
         return process
 
     def standin(self, package, *args: str) -> subprocess.Popen:
-        return self.start(sys.executable, "-m", "sw2sim", "ros2", str(package), "--realtime", "0",
+        return self.start(str(PYTHON), "-m", "sw2sim", "ros2", str(package), "--realtime", "0",
                           "--duration", "40", *args, name="standin")
 
     def record(self, *args: str, timeout: float = 45.0) -> dict:
-        process = subprocess.Popen([sys.executable, str(HERE / "recorder.py"), *args],
+        process = subprocess.Popen([str(PYTHON), str(HERE / "recorder.py"), *args],
                                    env=self.env, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                                    text=True, start_new_session=True)
         self.processes.append(process)

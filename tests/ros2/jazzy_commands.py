@@ -9,7 +9,7 @@
 
 from __future__ import annotations
 
-import importlib
+import json
 import re
 from pathlib import Path
 
@@ -31,49 +31,76 @@ def jazzy_commands(page: Page) -> list[Command]:
     return found
 
 
-def message_class(type_name: str):
-    """`pkg/msg/Name` (or `pkg/Name`) as the rclpy class, or None where it is not
-    installed."""
-    parts = type_name.split("/")
-    package, name = parts[0], parts[-1]
+# Run by the ROS 2 environment's Python: the fields of each message type named on the
+# command line and of the types they hold, as {type: {field: field type}}.
+_FIELDS = """
+import importlib, json, re, sys
+table, todo = {}, list(sys.argv[1:])
+while todo:
+    name = todo.pop()
+    if name in table:
+        continue
+    package, *_, message = name.split("/")
     try:
-        return getattr(importlib.import_module(f"{package}.msg"), name)
+        cls = getattr(importlib.import_module(package + ".msg"), message)
     except (ImportError, AttributeError):
-        return None
+        table[name] = None
+        continue
+    table[name] = cls.get_fields_and_field_types()
+    for kind in table[name].values():
+        inner = re.fullmatch(r"(?:sequence<)?([\\w]+/[\\w]+)(?:, \\d+)?>?", kind)
+        if inner:
+            todo.append(inner.group(1))
+print(json.dumps(table))
+"""
 
 
-def field_problems(cls, data, where: str) -> list[str]:
+def field_tables(type_names: set[str]) -> dict[str, dict[str, str] | None]:
+    """The fields of these message types and of those they hold (None: not installed),
+    read by the ROS 2 environment, where the message packages are."""
+    from ros2_environment import run
+    done = run(_FIELDS, *sorted(type_names))
+    assert done.returncode == 0, done.stderr
+    return json.loads(done.stdout)
+
+
+def _short(type_name: str) -> str:
+    """`pkg/msg/Name` as `pkg/Name`, the form the field tables name nested types in."""
+    parts = type_name.split("/")
+    return f"{parts[0]}/{parts[-1]}"
+
+
+def field_problems(tables: dict, type_name: str, data, where: str) -> list[str]:
     """The keys of a YAML message (nested dicts and lists of dicts) that its type lacks."""
-    if not isinstance(data, dict):
+    fields = tables.get(_short(type_name)) or tables.get(type_name)
+    if not isinstance(data, dict) or not fields:
         return []
-    fields = cls.get_fields_and_field_types()
     problems = []
     for key, value in data.items():
         if key not in fields:
-            problems.append(f"{where}: {cls.__name__} has no field {key!r}")
+            problems.append(f"{where}: {type_name} has no field {key!r}")
             continue
-        kind = fields[key]
-        inner = re.fullmatch(r"sequence<([\w/]+)(?:, \d+)?>", kind)
-        if inner and isinstance(value, list):
-            element = message_class(inner.group(1))
-            for item in value:
-                problems += field_problems(element, item, where) if element else []
-        elif "/" in kind and isinstance(value, dict):
-            nested = message_class(kind)
-            problems += field_problems(nested, value, where) if nested else []
+        inner = re.fullmatch(r"(?:sequence<)?(\w+/\w+)(?:, \d+)?>?", fields[key])
+        if not inner:
+            continue
+        items = value if isinstance(value, list) else [value]
+        for item in items:
+            problems += field_problems(tables, inner.group(1), item, where)
     return problems
 
 
-def path_problem(cls, path: str, where: str) -> str | None:
+def path_problem(tables: dict, type_name: str, path: str, where: str) -> str | None:
     """An `--field a.b` path that the type does not have."""
     for name in path.split("."):
-        fields = cls.get_fields_and_field_types()
-        if name not in fields:
-            return f"{where}: {cls.__name__} has no field {name!r} (--field {path})"
-        inner = re.fullmatch(r"(?:sequence<)?([\w/]+)(?:, \d+)?>?", fields[name])
-        cls = message_class(inner.group(1)) if inner and "/" in inner.group(1) else None
-        if cls is None:
+        fields = tables.get(_short(type_name)) or tables.get(type_name)
+        if not fields:
             return None
+        if name not in fields:
+            return f"{where}: {type_name} has no field {name!r} (--field {path})"
+        inner = re.fullmatch(r"(?:sequence<)?(\w+/\w+)(?:, \d+)?>?", fields[name])
+        if not inner:
+            return None
+        type_name = inner.group(1)
     return None
 
 
@@ -95,12 +122,11 @@ def name_problems(command: Command, ported: dict[str, Path], nodes: set[str]) ->
     return []
 
 
-def topic_problems(command: Command, graph: dict[str, list[str]]) -> list[str]:
-    """What a `ros2 topic` line names that the run did not have: the topic, its type, the
-    message's fields, the `--field` path."""
-    w, where = command.words, command.location
+def topic_line(command: Command) -> tuple[str | None, str | None, str | None, str | None]:
+    """A `ros2 topic` line's (verb, topic, type, --field path); verb None for other lines."""
+    w = command.words
     if w[1:2] != ["topic"] or len(w) < 3 or w[2] == "list":
-        return []
+        return None, None, None, None
     rest = [x for x in w[3:] if x not in ("--once", "-1")]
     field = None
     if "--field" in rest:
@@ -108,25 +134,47 @@ def topic_problems(command: Command, graph: dict[str, list[str]]) -> list[str]:
         field = rest[i + 1] if i + 1 < len(rest) else None
         rest = rest[:i] + rest[i + 2:]
     topic = rest[0] if rest else None
+    type_name = rest[1] if w[2] == "pub" and len(rest) > 1 else None
+    return w[2], topic, type_name, field
+
+
+def topic_types(lines: list[Command], graph: dict[str, list[str]]) -> set[str]:
+    """The message types the `ros2 topic` lines name or the run gave their topics."""
+    found = set()
+    for command in lines:
+        verb, topic, type_name, _ = topic_line(command)
+        if verb:
+            found.add(type_name or (graph.get(topic) or ["?"])[0])
+    return found - {"?"}
+
+
+def topic_problems(command: Command, graph: dict[str, list[str]], tables: dict) -> list[str]:
+    """What a `ros2 topic` line names that the run did not have: the topic, its type, the
+    message's fields, the `--field` path. `tables`: field_tables() of topic_types()."""
+    verb, topic, type_name, field = topic_line(command)
+    where = command.location
+    if verb is None:
+        return []
     if topic is None:
         return [f"{where}: `{command.text}` names no topic"]
     if topic not in graph:
         return [f"{where}: {topic} is not a topic of the run (it had {sorted(graph)})"]
     types = graph[topic]
     problems = []
-    type_name = rest[1] if w[2] == "pub" and len(rest) > 1 else types[0]
+    type_name = type_name or types[0]
     if type_name not in types:
         problems.append(f"{where}: {topic} carries {types}, not {type_name}")
-    cls = message_class(type_name)
-    if cls is None:
+    if not (tables.get(_short(type_name)) or tables.get(type_name)):
         return problems + [f"{where}: the type {type_name} is not installed here"]
-    if w[2] == "pub" and len(rest) > 2:
+    w = command.words
+    rest = [x for x in w[3:] if x not in ("--once", "-1", "--field", field)]
+    if verb == "pub" and len(rest) > 2:
         try:
             data = yaml.safe_load(rest[2])
         except yaml.YAMLError as exc:
             return problems + [f"{where}: the message is not YAML: {exc}"]
-        problems += field_problems(cls, data, where)
+        problems += field_problems(tables, type_name, data, where)
     if field:
-        problem = path_problem(cls, field, where)
+        problem = path_problem(tables, type_name, field, where)
         problems += [problem] if problem else []
     return problems

@@ -10,6 +10,8 @@ import sys
 
 import pytest
 
+from ros2_environment import PYTHON
+
 
 CALL = re.compile(r"^\d+\s+(sendto|sendmsg|connect)\(.*")
 ADDRESS = re.compile(r'inet_addr\("([^"]+)"\)|inet_pton\(AF_INET6, "([^"]+)"')
@@ -30,11 +32,11 @@ def test_the_standin_and_a_node_talk_over_loopback_only(ros2, ported_example_3):
         pytest.skip("strace is not installed (Debian: strace)")
     trace = ros2.home / "trace"
     ros2.start(strace, "-f", "-qq", "-e", "trace=sendto,sendmsg,connect", "-o", str(trace),
-               sys.executable, "-m", "sw2sim", "ros2", str(ported_example_3), "--realtime", "0",
+               str(PYTHON), "-m", "sw2sim", "ros2", str(ported_example_3), "--realtime", "0",
                "--duration", "40", name="standin")
     record_trace = ros2.home / "trace-recorder"
     process = subprocess.run([strace, "-f", "-qq", "-e", "trace=sendto,sendmsg,connect", "-o",
-                              str(record_trace), sys.executable, str(ros2.here / "recorder.py"), "1"],
+                              str(record_trace), str(PYTHON), str(ros2.here / "recorder.py"), "1"],
                              env=ros2.env, capture_output=True, text=True, timeout=60,
                              start_new_session=True)
     assert process.returncode == 0, process.stderr[-2000:]

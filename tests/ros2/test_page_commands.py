@@ -1,7 +1,7 @@
 """The `ros2 launch` and `ros2 run` lines that the pages show for ROS 2 Jazzy name launch
 files that `sw2sim port` writes and node files that the pages write, in packages that a
 page ports (their `ros2 topic` lines are checked on each page's run, in
-test_page_blocks.py). Needs sw2sim port only, not rclpy."""
+test_ros2_page_blocks.py). Needs sw2sim port only, not rclpy."""
 
 from __future__ import annotations
 
@@ -65,10 +65,10 @@ def test_a_wrong_name_is_caught(ported, tmp_path):
 
 
 def test_a_wrong_topic_type_or_field_is_caught(tmp_path):
-    from sw2sim.ros2 import missing
+    from jazzy_commands import field_tables, topic_problems, topic_types
+    from ros2_environment import missing
     if reason := missing():
         pytest.skip(reason)
-    from jazzy_commands import topic_problems
     graph = {"/arm_controller/joint_trajectory": ["trajectory_msgs/msg/JointTrajectory"],
              "/arm_controller/controller_state":
                  ["control_msgs/msg/JointTrajectoryControllerState"]}
@@ -87,7 +87,8 @@ def test_a_wrong_topic_type_or_field_is_caught(tmp_path):
         page.write_text(f"---\ntitle: t\n---\n\n```bash\n{text}```\n"
                         '{: data-ros2-needs="ROS 2 Jazzy"}\n', encoding="utf-8")
         lines = jazzy_commands(parse_page(page, tmp_path))
-        found[name] = [p for c in lines for p in topic_problems(c, graph)]
+        tables = field_tables(topic_types(lines, graph))
+        found[name] = [p for c in lines for p in topic_problems(c, graph, tables)]
     assert found["good"] == []
     assert len(found["bad"]) == 4, found["bad"]
     assert "no field 'position'" in found["bad"][0]

@@ -20,13 +20,15 @@ import yaml
 from lxml import etree
 
 import sw2sim
+import ros2_environment
 from repository import ROOT
 from sw2sim.port import port
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "check"))
 from exporter_packages import FOUR_WHEELER_NESTED, write_export  # noqa: E402  (tests/tool/check)
 
-VENV = Path(sys.executable).parent.parent
+# colcon and ament_cmake from PyPI live in the ROS 2 environment (tests/ros2_environment.py)
+VENV = ros2_environment.VENV
 COLCON = shutil.which("colcon", path=str(VENV / "bin"))
 JAZZY = json.loads((Path(__file__).with_name("jazzy_packages.json")).read_text())
 WHEELS = "front_left_joint,front_right_joint,rear_left_joint,rear_right_joint"

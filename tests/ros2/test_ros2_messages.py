@@ -5,10 +5,11 @@ built with the same generators): real ROS 2 nodes exchange them with the stand-i
 from __future__ import annotations
 
 import json
+from pathlib import Path
 
 import pytest
 
-from sw2sim.ros2 import messages, missing
+from ros2_environment import missing, run
 
 UPSTREAM = {
     "tf2_msgs/msg/TFMessage":
@@ -29,14 +30,20 @@ UPSTREAM = {
 def test_the_built_messages_have_upstreams_type_hashes():
     if missing():
         pytest.skip(missing())
-    where = messages.ensure()
+    done = run("from sw2sim.ros2 import messages; print(messages.ensure())")
+    assert done.returncode == 0, done.stderr
+    where = Path(done.stdout.strip().splitlines()[-1])
     for name, expected in UPSTREAM.items():
         described = json.loads((where / "share" / f"{name}.json").read_text())
         assert described["type_hashes"][0]["hash_string"] == expected, name
 
 
 def test_the_generation_entry_point_is_a_quick_no_op_when_done():
+    """`make setup` runs it on every set-up: once built, it builds nothing again."""
     if missing():
         pytest.skip(missing())
-    messages.ensure()
-    assert messages.ready()
+    done = run("import os; from sw2sim.ros2 import messages; messages.ensure(); "
+               "marker = messages._marker(messages.prefix()); before = os.stat(marker).st_mtime_ns; "
+               "messages.ensure(); print(messages.ready(), os.stat(marker).st_mtime_ns == before)")
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.split() == ["True", "True"], done.stdout

@@ -12,7 +12,6 @@ import os
 import re
 import select
 import subprocess
-import sys
 import time
 from pathlib import Path
 
@@ -21,21 +20,14 @@ import pytest
 
 from course.snippets import find_pages, parse_page
 from course.snippets.ros2 import Ros2BlockError, Session
-from jazzy_commands import jazzy_commands, topic_problems
+from jazzy_commands import field_tables, jazzy_commands, topic_problems, topic_types
 from repository import ROOT
+from ros2_environment import PYTHON, missing
 
 RECORD = Path(__file__).with_name("record.py")
 PAGES = [p for p in find_pages(ROOT) if parse_page(p, ROOT).ros2_blocks]
 WHEELS = ["front_left_joint", "front_right_joint", "rear_left_joint", "rear_right_joint"]
 PULSE = 1.0   # s: the pulse nodes' length of a pulse
-
-
-def _missing() -> str | None:
-    try:
-        from sw2sim.ros2 import missing
-    except ImportError:
-        return "sw2sim.ros2 is not there"
-    return missing()
 
 
 def test_every_practice_has_a_ros2_page_that_runs():
@@ -208,7 +200,7 @@ def _wait_for_line(process: subprocess.Popen, line: str, timeout: float = 30.0) 
 
 @pytest.mark.parametrize("path", PAGES, ids=lambda p: p.relative_to(ROOT).as_posix())
 def test_page_ros2_blocks(path, tmp_path, record_property):
-    if reason := _missing():
+    if reason := missing():
         pytest.skip(reason)
     page = parse_page(path, ROOT)
     assert not page.errors, "\n".join(map(str, page.errors))
@@ -219,7 +211,7 @@ def test_page_ros2_blocks(path, tmp_path, record_property):
         try:
             session.prepare()
             recorder = subprocess.Popen(
-                [sys.executable, str(RECORD), f"{seconds:g}", trigger,
+                [str(PYTHON), str(RECORD), f"{seconds:g}", trigger,
                  *(f"{t}={k}" for t, k in topics.items())],
                 env=session.env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                 start_new_session=True)
@@ -233,7 +225,9 @@ def test_page_ros2_blocks(path, tmp_path, record_property):
             session.check()
             claim(record)
             # What the page's lines for Jazzy name is what this run had.
-            problems = [p for c in jazzy_commands(page) for p in topic_problems(c, record["graph"])]
+            lines = jazzy_commands(page)
+            tables = field_tables(topic_types(lines, record["graph"]))
+            problems = [p for c in lines for p in topic_problems(c, record["graph"], tables)]
             assert not problems, "\n".join(problems)
         except Ros2BlockError as error:
             fault = str(error)
