@@ -329,7 +329,8 @@ def test_examples_are_copied_verbatim(site):
 def test_project_files_stay_out_of_the_site(site):
     for name in ["sw2sim", "course", "tests", "tools", "node_modules", ".venv", "Makefile", "Gemfile",
                  "Gemfile.lock", "package.json", "package-lock.json", "pyproject.toml",
-                 "requirements.txt", "README.md", "LICENSE", "MUJOCO_LOG.TXT", "_pages"]:
+                 "requirements.txt", "requirements-ros2.txt", ".venv-ros2", "README.md", "LICENSE",
+                 "MUJOCO_LOG.TXT", "_pages"]:
         assert not (site / name).exists(), f"{name} was published"
     # The lesson modules downloaded notebooks fetch (notebooks/files.json) are published
     # under notebooks/modules/, byte for byte; no other Python outside examples/.

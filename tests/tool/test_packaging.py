@@ -52,7 +52,7 @@ def local_modules() -> set[str]:
 
 def _ignored(path: Path) -> bool:
     parts = path.relative_to(ROOT).parts
-    return parts[0] in (".venv", "node_modules", "_site", ".git") or "__pycache__" in parts
+    return parts[0] in (".venv", ".venv-ros2", "node_modules", "_site", ".git") or "__pycache__" in parts
 
 
 def imported_modules(*folders: str) -> set[str]:
