@@ -43,19 +43,19 @@ def main() -> int:
     node = rclpy.create_node("recorder")
     latched = QoSProfile(depth=1, durability=DurabilityPolicy.TRANSIENT_LOCAL,
                          reliability=ReliabilityPolicy.RELIABLE)
-    out = {"clock": [], "states": [], "description": None, "tf_static": [], "tf": None,
+    out = {"clock": [], "states": [], "description": None, "tf_static": [], "tf": [],
            "controller_state": {}}
 
     def on_state(m):
         out["states"].append([seconds(m.header.stamp), dict(zip(m.name, m.position)),
                               dict(zip(m.name, m.velocity))])
 
-    def on_tf(m):
-        out["tf"] = [[t.header.frame_id, t.child_frame_id, seconds(t.header.stamp),
+    def on_tf(m):   # every message: /tf and /joint_states arrive in either order
+        out["tf"].append([[t.header.frame_id, t.child_frame_id, seconds(t.header.stamp),
                       [t.transform.translation.x, t.transform.translation.y,
                        t.transform.translation.z],
                       [t.transform.rotation.x, t.transform.rotation.y, t.transform.rotation.z,
-                       t.transform.rotation.w]] for t in m.transforms]
+                       t.transform.rotation.w]] for t in m.transforms])
 
     def on_static(m):
         out["tf_static"] += [[t.header.frame_id, t.child_frame_id,

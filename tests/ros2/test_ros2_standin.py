@@ -39,8 +39,11 @@ def test_an_independent_node_drives_the_arm_and_sees_mujocos_kinematics(ros2, po
     # /robot_description is the URDF; /tf_static holds the fixed joint
     assert out["description"] == (ported_example_3 / "urdf" / "example_3.urdf").read_text()
     assert ["world", "base_link"] == out["tf_static"][0][:2]
-    # /tf at the last joint state gives MuJoCo's pose of end_arm_link
-    frames = {child: (parent, tr, rot) for parent, child, _, tr, rot in out["tf"]}
+    # /tf at the last joint state that came with one gives MuJoCo's pose of end_arm_link
+    stamps = {s[0]: s[1] for s in out["states"]}
+    tf = next(m for m in reversed(out["tf"]) if m and m[0][2] in stamps)
+    angles = stamps[tf[0][2]]
+    frames = {child: (parent, tr, rot) for parent, child, _, tr, rot in tf}
     frames["base_link"] = ("world", *out["tf_static"][0][2:])
     chain, link = [], "end_arm_link"
     while link != "world":
@@ -48,8 +51,6 @@ def test_an_independent_node_drives_the_arm_and_sees_mujocos_kinematics(ros2, po
         chain.insert(0, (tr, rot))
         link = parent
     position, _ = compose(chain)
-    tf_time = out["tf"][0][2]
-    angles = [s[1] for s in out["states"] if abs(s[0] - tf_time) < 1e-6][0]
     model = sw2sim.load_package(ported_example_3).compile()
     data = mujoco.MjData(model)
     for name, value in angles.items():
