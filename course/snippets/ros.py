@@ -38,6 +38,7 @@ import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from . import shell
 from .parse import Block, Page
 
 WINDOWS = frozenset({"rqt_plot", "rviz", "rqt", "rqt_graph", "rqt_console", "rqt_gui",
@@ -226,26 +227,18 @@ class Session:
 
     def finish(self, command: Command) -> None:
         """Run a command to its end, and keep what it changed of the shell."""
-        state = self.folder / "shell"
-        script = (f"{command.text}\nstatus=$?\npwd > '{state}.cwd'\nenv -0 > '{state}.env'\n"
-                  "exit $status\n")
-        from sw2sim.ros.run import with_ctrl_c
         try:
-            done = subprocess.run(["bash", "-c", script], cwd=self.cwd,
-                                  env=self.env, capture_output=True, text=True,
-                                  timeout=COMMAND_TIMEOUT, start_new_session=True,
-                                  preexec_fn=with_ctrl_c)
+            ended = shell.finish(command.text, self.cwd, self.env, self.folder / "shell",
+                                 COMMAND_TIMEOUT)
         except subprocess.TimeoutExpired:
             raise RosBlockError(command.location, f"`{command.text}` did not end within "
                                                   f"{COMMAND_TIMEOUT:g} s") from None
         allowed = (0, 1) if command.program == "grep" else (0,)
-        if done.returncode not in allowed:
+        if ended.done.returncode not in allowed:
             raise RosBlockError(command.location,
-                                f"`{command.text}` exited with {done.returncode}:\n"
-                                f"{(done.stdout + done.stderr)[-1500:]}")
-        self.cwd = Path(Path(f"{state}.cwd").read_text().strip())
-        pairs = Path(f"{state}.env").read_bytes().decode(errors="replace").split("\0")
-        self.env = dict(p.split("=", 1) for p in pairs if "=" in p)
+                                f"`{command.text}` exited with {ended.done.returncode}:\n"
+                                f"{(ended.done.stdout + ended.done.stderr)[-1500:]}")
+        self.cwd, self.env = ended.cwd, ended.env
         paths = self.env.get("ROS_PACKAGE_PATH", "").split(os.pathsep)
         if self.standins not in paths:
             self.env["ROS_PACKAGE_PATH"] = os.pathsep.join([*filter(None, paths), self.standins])

@@ -33,6 +33,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Callable
 
+from . import shell
 from .parse import Block, Page, find_pages, parse_page
 from .ros import Command, commands
 
@@ -200,24 +201,17 @@ class Session:
 
     def finish(self, command: Command) -> None:
         """Run a command to its end, and keep what it changed of the shell."""
-        state = self.folder / "shell"
-        script = (f"{command.text}\nstatus=$?\npwd > '{state}.cwd'\nenv -0 > '{state}.env'\n"
-                  "exit $status\n")
-        from sw2sim.ros.run import with_ctrl_c
         try:
-            done = subprocess.run(["bash", "-c", script], cwd=self.cwd, env=self.env,
-                                  capture_output=True, text=True, timeout=COMMAND_TIMEOUT,
-                                  start_new_session=True, preexec_fn=with_ctrl_c)
+            ended = shell.finish(command.text, self.cwd, self.env, self.folder / "shell",
+                                 COMMAND_TIMEOUT)
         except subprocess.TimeoutExpired:
             raise Ros2BlockError(command.location, f"`{command.text}` did not end within "
                                                    f"{COMMAND_TIMEOUT:g} s") from None
-        if done.returncode != 0:
+        if ended.done.returncode != 0:
             raise Ros2BlockError(command.location,
-                                 f"`{command.text}` exited with {done.returncode}:\n"
-                                 f"{(done.stdout + done.stderr)[-1500:]}")
-        self.cwd = Path(Path(f"{state}.cwd").read_text().strip())
-        pairs = Path(f"{state}.env").read_bytes().decode(errors="replace").split("\0")
-        self.env = dict(p.split("=", 1) for p in pairs if "=" in p)
+                                 f"`{command.text}` exited with {ended.done.returncode}:\n"
+                                 f"{(ended.done.stdout + ended.done.stderr)[-1500:]}")
+        self.cwd, self.env = ended.cwd, ended.env
 
     # -- the end -----------------------------------------------------------------------
     def check(self) -> None:
