@@ -202,6 +202,14 @@ examples:
 """
 
 
+def _simulation_options(parser) -> None:
+    """The options `ros` and `ros2` share: how long, how fast, and the viewer."""
+    parser.add_argument("--duration", type=float, metavar="S", help="stop after S seconds")
+    parser.add_argument("--realtime", type=float, default=1.0, metavar="F",
+                        help="real-time factor: 1 (default) as in Gazebo, 0 as fast as possible")
+    parser.add_argument("--view", action="store_true",
+                        help="show the simulation in MuJoCo's viewer (needs a display)")
+
 def main(argv: list[str] | None = None) -> int:
     """Run one command; return its exit status (never raise on bad input)."""
     parser = _parser()
@@ -315,11 +323,7 @@ def _parser() -> argparse.ArgumentParser:
     ros.add_argument("path", metavar="PATH", help="package folder or .zip of it")
     ros.add_argument("--launch", metavar="FILE", help="the launch file (default: "
                      "launch/gazebo.launch of the package)")
-    ros.add_argument("--duration", type=float, metavar="S", help="stop after S seconds")
-    ros.add_argument("--realtime", type=float, default=1.0, metavar="F",
-                     help="real-time factor: 1 (default) as in Gazebo, 0 as fast as possible")
-    ros.add_argument("--view", action="store_true",
-                     help="show the simulation in MuJoCo's viewer (needs a display)")
+    _simulation_options(ros)
     ros.set_defaults(command="ros", run=_ros)
 
     ros2 = commands.add_parser("ros2", help="run a ROS 2 package's robot under rclpy, with "
@@ -327,11 +331,7 @@ def _parser() -> argparse.ArgumentParser:
                                formatter_class=raw)
     ros2.add_argument("path", metavar="PATH", help="package folder or .zip of it (ROS 2, or a "
                       "ROS 1 export, ported first)")
-    ros2.add_argument("--duration", type=float, metavar="S", help="stop after S seconds")
-    ros2.add_argument("--realtime", type=float, default=1.0, metavar="F",
-                      help="real-time factor: 1 (default) as in Gazebo, 0 as fast as possible")
-    ros2.add_argument("--view", action="store_true",
-                      help="show the simulation in MuJoCo's viewer (needs a display)")
+    _simulation_options(ros2)
     ros2.set_defaults(command="ros2", run=_ros2)
 
     port = commands.add_parser("port", help="write a ROS 2 Jazzy package from the ROS 1 "

@@ -215,13 +215,7 @@ class Session:
 
     def start(self, command: Command) -> Running:
         log = self.logs / f"{len(self.running) + len(self.ran):02d}-{command.program}.log"
-        with open(log, "wb") as out:
-            from sw2sim.ros.run import with_ctrl_c
-            process = subprocess.Popen(["bash", "-c", command.text], cwd=self.cwd,
-                                       env=self.env, stdout=out, stderr=subprocess.STDOUT,
-                                       stdin=subprocess.DEVNULL, start_new_session=True,
-                                       preexec_fn=with_ctrl_c)
-        running = Running(command, process, log)
+        running = Running(command, shell.start(command.text, self.cwd, self.env, log), log)
         self.running.append(running)
         return running
 

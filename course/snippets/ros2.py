@@ -189,13 +189,7 @@ class Session:
 
     def start(self, command: Command, text: str) -> Started:
         log = self.logs / f"{len(self.ran):02d}-{_slug(command)}.log"
-        from sw2sim.ros.run import with_ctrl_c
-        with open(log, "wb") as out:
-            process = subprocess.Popen(["bash", "-c", text], cwd=self.cwd, env=self.env,
-                                       stdout=out, stderr=subprocess.STDOUT,
-                                       stdin=subprocess.DEVNULL, start_new_session=True,
-                                       preexec_fn=with_ctrl_c)
-        started = Started(command, process, log)
+        started = Started(command, shell.start(text, self.cwd, self.env, log), log)
         self.started.append(started)
         return started
 

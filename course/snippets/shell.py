@@ -34,3 +34,13 @@ def finish(text: str, cwd: Path, env: dict[str, str], state: Path,
     except OSError:   # the command ended the shell itself (`exit`)
         pass
     return Finished(done, cwd, env)
+
+
+def start(text: str, cwd: Path, env: dict[str, str], log: Path) -> subprocess.Popen:
+    """Start `text` with bash in the background, as in a terminal of its own: in a session
+    (and process group) of its own that Ctrl-C reaches, its output in `log`."""
+    from sw2sim.ros.run import with_ctrl_c
+    with open(log, "wb") as out:
+        return subprocess.Popen(["bash", "-c", text], cwd=cwd, env=env, stdout=out,
+                                stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL,
+                                start_new_session=True, preexec_fn=with_ctrl_c)
