@@ -509,10 +509,7 @@ def _port(args) -> int:
     try:
         package = find_package(args.path, urdf=args.urdf)
         report = port(package, args.output, name=args.name, effort_joints=args.effort_joints)
-    except LoadError as exc:
-        _say(f"sw2sim port: {exc}")
-        return EXIT_UNUSABLE
-    except PortError as exc:
+    except (LoadError, PortError) as exc:
         _say(f"sw2sim port: {exc}")
         return EXIT_UNUSABLE
     except OSError as exc:

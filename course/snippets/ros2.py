@@ -35,7 +35,7 @@ from typing import Callable
 
 from . import shell
 from .parse import Block, Page, find_pages, parse_page
-from .ros import Command, commands
+from .ros import Command, Running, commands
 
 # The Python environment the entry page has the reader make for ROS 2 (`make setup` makes
 # it in a clone): ROS 2's message packages share their module names with ROS 1's, so they
@@ -64,13 +64,6 @@ def environment(domain: int, base: dict[str, str]) -> dict[str, str]:
 
 
 @dataclass
-class Started:
-    command: Command
-    process: subprocess.Popen
-    log: Path
-
-
-@dataclass
 class Session:
     """One page's ROS 2 blocks in one folder and one ROS 2 domain."""
 
@@ -81,7 +74,7 @@ class Session:
     realtime: float = REALTIME
     env: dict[str, str] = field(default_factory=dict)
     ran: list[str] = field(default_factory=list)        # "page.md:line: command"
-    started: list[Started] = field(default_factory=list)
+    started: list[Running] = field(default_factory=list)
     written: dict[str, Block] = field(default_factory=dict)   # node files written, by path
     stopped: list[int] = field(default_factory=list)
     cwd: Path | None = None
@@ -162,7 +155,7 @@ class Session:
             self.finish(command)
         self.ran.append(f"{command.location}: {command.text}")
 
-    def wait_until_up(self, standin: Started) -> None:
+    def wait_until_up(self, standin: Running) -> None:
         if self.simulation_up:
             self.simulation_up()
             return
@@ -187,9 +180,9 @@ class Session:
                                                    f"data-ros2 and data-file)")
         self.write_node(block)
 
-    def start(self, command: Command, text: str) -> Started:
+    def start(self, command: Command, text: str) -> Running:
         log = self.logs / f"{len(self.ran):02d}-{_slug(command)}.log"
-        started = Started(command, shell.start(text, self.cwd, self.env, log), log)
+        started = Running(command, shell.start(text, self.cwd, self.env, log), log)
         self.started.append(started)
         return started
 
