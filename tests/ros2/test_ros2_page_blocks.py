@@ -161,9 +161,14 @@ def _car_steers_by_equation_4(record: dict) -> None:
 
 # page -> (simulated seconds per wall second, seconds to record after the first message
 # on the trigger, trigger, topics the recorder subscribes to, the claim)
+#
+# Practices 1 and 2 time a pulse on the node's side, so the node's delays lengthen or
+# shorten it. A reader's idle machine delays it by about a tick (10 ms); a test machine
+# running other tests beside it was seen to add 22 ms of wall time. At half speed, those
+# delays cost half as much simulated time, and the page's 2 % holds.
 CLAIMS = {
-    "_pages/practice-1/06-ros2.md": (1.0, 2.5, "motion:rear_left_joint", {}, _wheel_pulses),
-    "_pages/practice-2/05-ros2.md": (1.0, 2.0, "motion:rear_left_joint", {},
+    "_pages/practice-1/06-ros2.md": (0.5, 2.5, "motion:rear_left_joint", {}, _wheel_pulses),
+    "_pages/practice-2/05-ros2.md": (0.5, 2.0, "motion:rear_left_joint", {},
                                      _friction_and_pulses),
     "_pages/practice-3/06-ros2.md": (3.0, 10.5, "/middle_arm_controller/joint_trajectory",
                                      {"/middle_arm_controller/joint_trajectory": "trajectory",
