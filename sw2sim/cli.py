@@ -158,6 +158,19 @@ examples:
   sw2sim ros my_robot --launch my_robot/launch/gazebo.launch
 """
 
+ROS_ENV_HELP = """\
+Prints the shell lines that let this terminal's own ROS 1 commands use what `sw2sim
+ros` uses: `roslaunch PKG gazebo.launch` then runs with MuJoCo in Gazebo's place, and
+`rostopic` and `rosservice` know the message types Debian does not ship (gazebo_msgs,
+control_msgs, controller_manager_msgs). Run it through eval, once in each terminal:
+
+  eval "$(sw2sim ros-env examples)"
+
+FOLDER (any number) is a package, or a folder holding packages, that roslaunch should
+find. A catkin workspace built after this line keeps the stand-ins when its
+devel/setup.bash is sourced.
+"""
+
 
 PORT_HELP = """\
 Writes a ROS 2 Jazzy package (ament_cmake) from a ROS 1 package the exporter wrote,
@@ -325,6 +338,13 @@ def _parser() -> argparse.ArgumentParser:
                      "launch/gazebo.launch of the package)")
     _simulation_options(ros)
     ros.set_defaults(command="ros", run=_ros)
+
+    ros_env = commands.add_parser("ros-env", help="print the lines that let a terminal's ROS 1 "
+                                  "commands use MuJoCo in Gazebo's place",
+                                  description=ROS_ENV_HELP, formatter_class=raw)
+    ros_env.add_argument("folders", metavar="FOLDER", nargs="*",
+                         help="a package, or a folder holding packages, for ROS_PACKAGE_PATH")
+    ros_env.set_defaults(command="ros-env", run=_ros_env)
 
     ros2 = commands.add_parser("ros2", help="run a ROS 2 package's robot under rclpy, with "
                                "MuJoCo in Gazebo Sim's place", description=ROS2_HELP,
@@ -500,6 +520,11 @@ def _ros(args) -> int:
         view = False
     return run(args.path, launch=args.launch, duration=args.duration, realtime=args.realtime,
                view=view, say=lambda text: print(text, flush=True))
+
+
+def _ros_env(args) -> int:
+    from .ros.terminal import main
+    return main(args.folders)
 
 
 # -- port ----------------------------------------------------------------------------

@@ -50,7 +50,7 @@ NODES = {
 def _manifest(name: str) -> str:
     return (f'<?xml version="1.0"?>\n<package format="2">\n  <name>{name}</name>\n'
             f"  <version>0.0.0</version>\n  <description>{name} as sw2sim ros stands in for it"
-            f"</description>\n  <maintainer email=\"sw2sim@localhost\">sw2sim</maintainer>\n"
+            f"</description>\n  <maintainer email=\"sw2sim@example.com\">sw2sim</maintainer>\n"
             f"  <license>MIT</license>\n</package>\n")
 
 
