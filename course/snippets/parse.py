@@ -27,6 +27,8 @@ _DATA_ROS = re.compile(r"""(?<![\w-])data-ros\s*=\s*(?:"(?P<dq>[^"]*)"|'(?P<sq>[
 _DATA_ROS2 = re.compile(r"""(?<![\w-])data-ros2\s*=\s*(?:"(?P<dq>[^"]*)"|'(?P<sq>[^']*)')""")
 _ROS2_NEEDS = re.compile(r"""(?<![\w-])data-ros2-needs\s*=\s*(?:"(?P<dq>[^"]*)"|'(?P<sq>[^']*)')""")
 _ROS_LANGUAGES = (LANGUAGE, "bash")
+_TERMINAL = re.compile(r"""(?<![\w-])data-terminal\s*=\s*(?:"(?P<dq>[^"]*)"|'(?P<sq>[^']*)')""")
+_ROS_SETUP = re.compile(r"(?<![\w-])data-ros-setup(?![\w-])")
 _ROS_RUNNING = re.compile(r"^ros_running\s*:\s*(?P<value>.+?)\s*(?:#.*)?$")
 _DATA_FILE = re.compile(r"""(?<![\w-])data-file\s*=\s*(?:"(?P<dq>[^"]*)"|'(?P<sq>[^']*)')""")
 # An `{% include_code ... %}` tag anywhere in a line; `args` is what follows the name.
@@ -58,6 +60,9 @@ class Block:
     # its `data-ros2="PACKAGE"`: it runs under ROS 2 with the package `sw2sim port` wrote
     ros2: str | None = None
     language: str = LANGUAGE
+    # its `data-terminal="N"`: the reader's terminal a ROS 1 command block is typed in (1 is
+    # the first; a number not used before is a new terminal, opened as Getting started says)
+    terminal: int = 1
 
     @property
     def filename(self) -> str:
@@ -100,6 +105,9 @@ class Page:
     commands: list[Block] = field(default_factory=list)  # ```bash blocks with data-ros
     # Front matter `ros_running: roslaunch PKG FILE`: what the page assumes already runs.
     ros_running: str | None = None
+    # A ```bash block marked `data-ros-setup`: what every new terminal runs before a ROS 1
+    # command (Getting started has it; the ROS page runner opens each terminal with it).
+    ros_setup: Block | None = None
     ros2_commands: list[Block] = field(default_factory=list)  # ```bash blocks with data-ros2
     # Blocks of any language marked data-ros2-needs="WHAT": (block, WHAT). Shown, not run.
     ros2_needs: list[tuple[Block, str]] = field(default_factory=list)
@@ -250,10 +258,16 @@ class _Scan:
                                                      fence=(start, end), attributes=end,
                                                      ros2=ros2, language="bash"))
                 continue
+            if info == "bash" and ial and _ROS_SETUP.search(ial["body"]):
+                self.page.ros_setup = Block(self.page.path, start + 2,
+                                            without_raw_tags(token.content), fence=(start, end),
+                                            attributes=end, language="bash")
+                continue
             if info == "bash" and ros:
                 code = without_raw_tags(token.content)
                 self.page.commands.append(Block(self.page.path, start + 2, code, fence=(start, end),
-                                                attributes=end, ros=ros, language="bash"))
+                                                attributes=end, ros=ros, language="bash",
+                                                terminal=self.terminal(ial, end)))
                 continue
             if info != LANGUAGE:
                 if info and _PYTHON_LIKE.match(info.split()[0]):
@@ -273,6 +287,18 @@ class _Scan:
                 self.page.blocks.append(replace(block, fence=(start, end), attributes=end if ial else None,
                                                 data_file=self.page.data_files.get(start), ros=ros,
                                                 ros2=ros2))
+
+    def terminal(self, ial, end: int) -> int:
+        """The terminal a ROS command block's `data-terminal="N"` names (1 without one)."""
+        t = _TERMINAL.search(ial["body"]) if ial else None
+        if t is None:
+            return 1
+        value = (t["dq"] if t["dq"] is not None else t["sq"]).strip()
+        if not value.isdigit() or int(value) < 1:
+            self.error(end + 1, f'data-terminal names the reader\'s terminal by its number, 1, 2, '
+                                f'...: {{: data-ros="example_3" data-terminal="2"}}, not {value!r}')
+            return 1
+        return int(value)
 
     def ros_package(self, ial, info: str, end: int) -> str | None:
         """The package a block's `data-ros="PACKAGE"` names, or None; mistakes are errors."""

@@ -1,16 +1,27 @@
 """Run a page's ROS blocks (`data-ros`) in page order under ROS 1, with sw2sim's stand-in in
 Gazebo's place, as a reader following the page in terminals would.
 
-A ```bash block is split into its commands (a line ending in `\\` goes on), each run by
-bash as in one terminal: a block starts in the folder its `data-ros` names (`example_1`,
-the package's copy, or `example_1/..`, the folder that holds it), and what a command
-changes of the shell (`cd`, `source devel/setup.bash`, `export`) holds for the next;
-HOME is a folder of the run's own.
+The reader's terminals are modelled one by one. A block is typed into terminal 1 unless
+its `data-terminal="N"` names another. A terminal is opened as a reader opens one: a
+fresh bash with only a login's variables (HOME, a fresh folder; PATH; LANG) and the
+master's address, in a folder laid out as the reader's clone of this repository (the
+example packages as copies, `.venv` this repository's), where it first runs Getting
+started's terminal set-up (its block marked `data-ros-setup`). Nothing else is given: what
+a command needs must come from that set-up or from the page's own earlier commands in the
+same terminal. The one liberty taken is speed: SW2SIM_REALTIME makes the stand-in run
+REALTIME times faster than real time, and what the pages state is on simulated time.
 
-- `roslaunch`, `rosrun`, `rostopic echo` and a `rostopic pub` without `-1` keep running,
-  as in a terminal of their own. A second `roslaunch` stops the first, as the reader's
-  Ctrl-C does. After a launch the runner waits until the nodes it starts have registered
-  and simulated time runs.
+A ```bash block is split into its commands (a line ending in `\\` goes on), each run by
+bash as in that terminal: a block starts in the folder its `data-ros` names (`example_1`,
+the package's copy, or `example_1/..`, the folder that holds it), and what a command
+changes of the shell (`cd`, `source devel/setup.bash`, `export`) holds for the terminal's
+next command.
+
+- `roslaunch`, `rosrun`, `rostopic echo` and a `rostopic pub` without `-1` keep running and
+  keep their terminal busy. A block typed into a busy terminal stops what runs there
+  first, as the reader's Ctrl-C does; a command after one that keeps running, in the same
+  block, is a page fault. After a launch the runner waits until the nodes it starts have
+  registered and simulated time runs.
 - `rostopic pub -1` sends its message at once and returns 3 s later, with status 0; the
   runner goes on once it is sent.
 - Every other command must end, with status 0 (`grep` may say 1: nothing found). Before a
@@ -23,7 +34,6 @@ A ```python block is a node file of the package (`data-file`): the page's comman
 it. At the end every node the page shows must be running, what keeps running must still
 run, and no launch may have printed a traceback, an ERROR or a dead process.
 
-The packages are copies in a folder of the caller's, so nothing of the repository changes.
 Everything started runs in a process group of its own and is stopped by `close()`.
 """
 
@@ -35,6 +45,7 @@ import shlex
 import shutil
 import subprocess
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -123,22 +134,52 @@ class Running:
     command: Command
     process: subprocess.Popen
     log: Path
+    terminal: int = 1
+
+
+@dataclass
+class Terminal:
+    """One of the reader's terminals: where its shell is, its variables, and the command
+    that keeps it busy (None when the reader can type)."""
+
+    number: int
+    cwd: Path
+    env: dict[str, str]
+    busy: Running | None = None
+
+
+# What a login shell has before the reader types anything (Debian's default PATH).
+LOGIN_PATH = "/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin"
+SETUP_PAGE = "_pages/reference/01-getting-started.md"
+
+
+def terminal_setup(root: Path) -> Block:
+    """Getting started's block of what every new terminal runs (`data-ros-setup`)."""
+    from .parse import parse_page
+    block = parse_page(root / SETUP_PAGE, root).ros_setup
+    if block is None:
+        raise RosBlockError(SETUP_PAGE, "no ```bash block marked data-ros-setup: the ROS pages' "
+                                        "terminals have nothing to start from")
+    return block
 
 
 @dataclass
 class Session:
-    """One page's ROS blocks against one ROS master (ROS_MASTER_URI in `env`)."""
+    """One page's ROS blocks against one ROS master (`master`, its ROS_MASTER_URI)."""
 
     page: Page
     root: Path
-    folder: Path          # where the packages are copied and the logs go
-    env: dict[str, str]   # the caller's environment, ROS_MASTER_URI and ROS_HOME included
+    folder: Path          # the reader's clone: package copies, logs, HOME
+    master_uri: str
     ran: list[str] = field(default_factory=list)
     windows: list[str] = field(default_factory=list)   # "page.md:line: command" not run
     running: list[Running] = field(default_factory=list)
     nodes: list[Block] = field(default_factory=list)
     stopped: list[int] = field(default_factory=list)   # every process id it has stopped
-    cwd: Path | None = None    # the shell's folder, as the last command left it
+    terminals: dict[int, Terminal] = field(default_factory=dict)
+    # Called with each command about to run, once what it names exists: a test's observer
+    # starts listening there, before the command has any effect.
+    before_command: Callable[[Command], None] | None = None
 
     def __enter__(self) -> Session:
         return self
@@ -148,24 +189,41 @@ class Session:
 
     # -- set-up ------------------------------------------------------------------------
     def prepare(self) -> None:
-        from sw2sim.ros.run import environment
-        packages = sorted({package_of(b.ros) for b in self.page.ros_blocks})
-        source = self.folder / "src"
-        for name in packages:
-            if not (source / name).exists():
-                shutil.copytree(self.root / "examples" / name, source / name)
-        env = environment(source / packages[0], realtime=REALTIME)
-        home = self.folder / "home"
-        home.mkdir(exist_ok=True)
-        self.env = {**env, **{k: v for k, v in self.env.items() if k.startswith("ROS_")
-                              and k != "ROS_PACKAGE_PATH"},
-                    # what a terminal shows at once; a file would get it in blocks
-                    "PYTHONUNBUFFERED": "1", "HOME": str(home)}
-        # Where the stand-in's packages are: kept on ROS_PACKAGE_PATH after every command,
-        # as Gazebo's stay when a workspace's setup.bash is sourced.
-        self.standins = env["ROS_PACKAGE_PATH"].split(os.pathsep)[-1]
+        """The reader's clone: the packages the page uses, copied, and this repository's
+        `.venv` (made by `make setup`, as Getting started says)."""
+        examples = self.folder / "examples"
+        for name in sorted({package_of(b.ros) for b in self.page.ros_blocks}):
+            if not (examples / name).exists():
+                shutil.copytree(self.root / "examples" / name, examples / name)
+        venv = self.folder / ".venv"
+        if not venv.exists():
+            venv.symlink_to(self.root / ".venv", target_is_directory=True)
+        self.home = self.folder / "home"
+        self.home.mkdir(exist_ok=True)
         self.logs = self.folder / "logs"
         self.logs.mkdir(parents=True, exist_ok=True)
+        self.setup = terminal_setup(self.root)
+
+    def login(self) -> dict[str, str]:
+        """A new terminal's variables before its set-up."""
+        return {"HOME": str(self.home), "PATH": LOGIN_PATH, "LANG": "C.UTF-8",
+                "USER": os.environ.get("USER", "reader"), "SHELL": "/bin/bash",
+                "ROS_MASTER_URI": self.master_uri, "SW2SIM_REALTIME": f"{REALTIME:g}",
+                # what a terminal shows at once; a log file would get it in blocks
+                "PYTHONUNBUFFERED": "1"}
+
+    def terminal(self, number: int, location: str) -> Terminal:
+        """Terminal `number`, opened (and set up) the first time it is used."""
+        if number in self.terminals:
+            return self.terminals[number]
+        if number > 1 and number - 1 not in self.terminals:
+            raise RosBlockError(location, f"terminal {number} before terminal {number - 1}: "
+                                          "number the page's terminals in the order it opens them")
+        t = Terminal(number, self.folder, self.login())
+        self.terminals[number] = t
+        for command in commands(self.setup):
+            self.finish(command, t)
+        return t
 
     # -- the blocks --------------------------------------------------------------------
     def run(self) -> None:
@@ -174,17 +232,32 @@ class Session:
         if not blocks:
             return
         self.prepare()
-        self.cwd = (self.folder / "src" / blocks[0].ros).resolve()
         if self.page.ros_running:
+            t = self.terminal(1, f"{self.page.path}:1")
+            t.cwd = self.place(blocks[0].ros)
             self.command(Command(self.page.ros_running, f"{self.page.path}:1 (ros_running)",
-                                 blocks[0].ros))
+                                 blocks[0].ros), t)
         for block in blocks:
-            if block.language == "bash":
-                self.cwd = (self.folder / "src" / block.ros).resolve()
-                for command in commands(block):
-                    self.command(command)
-            else:
+            if block.language != "bash":
                 self.node(block)
+                continue
+            t = self.terminal(block.terminal, block.location)
+            if t.busy is not None:          # the reader's Ctrl-C, to type here
+                self._stop(t.busy)
+                self.running.remove(t.busy)
+                t.busy = None
+            t.cwd = self.place(block.ros)
+            for command in commands(block):
+                if t.busy is not None:
+                    raise RosBlockError(command.location, f"terminal {t.number} is busy with "
+                                        f"`{t.busy.command.text}`: put this command in a block "
+                                        f"of its own, typed into another terminal "
+                                        f"(data-terminal), and say so on the page")
+                self.command(command, t)
+
+    def place(self, ros: str) -> Path:
+        """The folder a block's `data-ros` names, in the reader's clone."""
+        return (self.folder / "examples" / ros).resolve()
 
     def node(self, block: Block) -> None:
         shown, package = block.data_file or block.include, package_of(block.ros)
@@ -193,36 +266,38 @@ class Session:
                                                 f"{package}/ (include_code and data-file)")
         self.nodes.append(block)
 
-    def command(self, command: Command) -> None:
+    def command(self, command: Command, t: Terminal) -> None:
         words = command.words
         if not words:
             return
-        if command.program in WINDOWS or self.launches_a_window(command):
+        if command.program in WINDOWS or self.launches_a_window(command, t):
             self.windows.append(f"{command.location}: {command.text} (opens a window)")
             return
         self.wait_for_names(command)
+        if self.before_command is not None:
+            self.before_command(command)
         if command.keeps_running:
             if words[0] == "roslaunch":
                 self.stop_launches()
-            self.start(command)
+            t.busy = self.start(command, t)
             if words[0] == "roslaunch":
-                self.settle(self.running[-1])
+                self.settle(t.busy)
         elif command.publishes_once:
-            self.published(self.start(command))
+            self.published(self.start(command, t))
         else:
-            self.finish(command)
+            self.finish(command, t)
         self.ran.append(f"{command.location}: {command.text}")
 
-    def start(self, command: Command) -> Running:
+    def start(self, command: Command, t: Terminal) -> Running:
         log = self.logs / f"{len(self.running) + len(self.ran):02d}-{command.program}.log"
-        running = Running(command, shell.start(command.text, self.cwd, self.env, log), log)
+        running = Running(command, shell.start(command.text, t.cwd, t.env, log), log, t.number)
         self.running.append(running)
         return running
 
-    def finish(self, command: Command) -> None:
-        """Run a command to its end, and keep what it changed of the shell."""
+    def finish(self, command: Command, t: Terminal) -> None:
+        """Run a command to its end, and keep what it changed of the terminal's shell."""
         try:
-            ended = shell.finish(command.text, self.cwd, self.env, self.folder / "shell",
+            ended = shell.finish(command.text, t.cwd, t.env, self.folder / "shell",
                                  COMMAND_TIMEOUT)
         except subprocess.TimeoutExpired:
             raise RosBlockError(command.location, f"`{command.text}` did not end within "
@@ -230,19 +305,17 @@ class Session:
         allowed = (0, 1) if command.program == "grep" else (0,)
         if ended.done.returncode not in allowed:
             raise RosBlockError(command.location,
-                                f"`{command.text}` exited with {ended.done.returncode}:\n"
+                                f"`{command.text}` exited with {ended.done.returncode} in "
+                                f"terminal {t.number}:\n"
                                 f"{(ended.done.stdout + ended.done.stderr)[-1500:]}")
-        self.cwd, self.env = ended.cwd, ended.env
-        paths = self.env.get("ROS_PACKAGE_PATH", "").split(os.pathsep)
-        if self.standins not in paths:
-            self.env["ROS_PACKAGE_PATH"] = os.pathsep.join([*filter(None, paths), self.standins])
+        t.cwd, t.env = ended.cwd, ended.env
 
-    def launches_a_window(self, command: Command) -> bool:
+    def launches_a_window(self, command: Command, t: Terminal) -> bool:
         """`roslaunch PACKAGE FILE` of a launch file that starts RViz or a GUI."""
         w = command.words
         if w[:1] != ["roslaunch"] or len(w) < 3:
             return False
-        for top in (self.folder / "src", Path(self.env.get("HOME", "/nonexistent"))):
+        for top in (self.folder / "examples", Path(t.env.get("HOME", "/nonexistent"))):
             for launch in top.rglob(f"{w[1]}/launch/{w[2]}"):
                 text = launch.read_text(errors="replace")
                 if any(f'pkg="{gui}"' in text for gui in WINDOWS):
@@ -266,7 +339,7 @@ class Session:
     # -- waiting like a reader ---------------------------------------------------------
     def master(self):
         import rosgraph
-        return rosgraph.Master("/sw2sim_page_runner", master_uri=self.env["ROS_MASTER_URI"])
+        return rosgraph.Master("/sw2sim_page_runner", master_uri=self.master_uri)
 
     def wait_for_names(self, command: Command) -> None:
         """Before a command that uses a topic or a service, wait until it exists."""
@@ -361,6 +434,9 @@ class Session:
             self.check_running()
             self._stop(*launches)
             self.running = [r for r in self.running if r not in launches]
+            for t in self.terminals.values():
+                if t.busy in launches:
+                    t.busy = None
 
     def close(self) -> None:
         self._stop(*self.running)

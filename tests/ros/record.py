@@ -3,7 +3,9 @@ print them as JSON once the clock passes UNTIL seconds:
 
     python record.py UNTIL JOINT_STATES_TOPIC COMMAND_TOPIC ...
 
-UNTIL is a simulated time, or `+S` for S seconds after the recorder's start.
+UNTIL is a simulated time, `+S` for S seconds after the recorder's start, or `+S@TOPIC`
+for S seconds after the first message on TOPIC, one of the COMMAND_TOPICs (a command that
+a slow-starting `rostopic pub` sends).
 
 {"states": [[t, {joint: position}], ...], "speeds": [[t, {joint: velocity}], ...],
  "commands": {topic: [[t, value], ...]}}
@@ -42,20 +44,29 @@ def main() -> int:
             pass
         time.sleep(0.1)
     rospy.init_node("recorder", anonymous=True, disable_signals=True)
-    until = float(until) if not until.startswith("+") else _now() + float(until[1:])
+    seconds, _, trigger = until.partition("@")
+    until = float(until) if not until.startswith("+") else _now() + float(seconds[1:])
+    if trigger:
+        until = float("inf")    # until the trigger's message comes
     states, speeds, commands = [], [], {topic: [] for topic in command_topics}
+
+    def command(topic, message):
+        nonlocal until
+        commands[topic].append([rospy.get_time(), message.data])
+        if topic == trigger and len(commands[topic]) == 1:
+            until = rospy.get_time() + float(seconds[1:])
 
     def state(message):
         # the simulation's own time of the state (the clock's messages may be coarser)
         t = message.header.stamp.to_sec() or rospy.get_time()
+        if not states:
+            print("recording", file=sys.stderr, flush=True)   # a test may wait for this line
         states.append([t, dict(zip(message.name, message.position))])
         speeds.append([t, dict(zip(message.name, message.velocity))])
 
     rospy.Subscriber(states_topic, JointState, state)
     for topic in command_topics:
-        rospy.Subscriber(topic, Float64,
-                         lambda message, topic=topic: commands[topic].append(
-                             [rospy.get_time(), message.data]))
+        rospy.Subscriber(topic, Float64, lambda message, topic=topic: command(topic, message))
     deadline = time.monotonic() + WALL_TIMEOUT
     while rospy.get_time() < until and time.monotonic() < deadline:
         time.sleep(0.05)
