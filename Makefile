@@ -74,7 +74,9 @@ $(STAMPS)/venv: requirements.txt pyproject.toml
 # packages and robot_state_publisher, about 26 MB; and what the packages' display.launch
 # opens, with a virtual screen to open it on: rviz, joint_state_publisher and xvfb, about
 # 90 MB more (Qt 5 and OGRE, mostly). Debian 12's joint_state_publisher_gui stops at start
-# (course/rviz_picture.py), so it is left out. The venv reaches Debian's pure-Python ROS
+# and would take the place of sw2sim's own (sw2sim/ros/sliders.py), so it is left out;
+# python3-tk is the toolkit of sw2sim's, and x11-utils (xwininfo) lets the tests see its
+# window open (tests/ros/test_display_launch.py). The venv reaches Debian's pure-Python ROS
 # modules through a .pth file read last, so its own libraries still come first. Where the
 # distribution has no ROS 1 (Ubuntu 24.04, Debian 13) this says so and goes on; the ROS
 # tests are then skipped with that reason, and the RViz pictures are kept as they are.
@@ -82,7 +84,7 @@ ROS_PACKAGES := python3-rospy python3-roslaunch python3-rostopic python3-rosserv
                 python3-rosnode rosout python3-std-msgs python3-std-srvs python3-sensor-msgs \
                 python3-rosgraph-msgs python3-tf2-msgs python3-genpy python3-genmsg \
                 ros-std-msgs ros-geometry-msgs ros-robot-state-publisher \
-                rviz joint-state-publisher xvfb catkin
+                rviz joint-state-publisher xvfb catkin python3-tk x11-utils
 ROS_PTH := zz-debian-ros.pth
 
 $(STAMPS)/ros: Makefile $(STAMPS)/venv

@@ -3,9 +3,11 @@ virtual screen (Xvfb), and the 3D view cut out of a picture of that screen.
 
 Debian 12 ships rviz and joint_state_publisher, and joint_state_publisher_gui 1.15.1,
 which stops as it opens (`TypeError: setValue(self, a0: int): argument 1 has unexpected
-type 'float'`: its sliders are given floats, which the PyQt5 of Debian 12 refuses). So a
-package of that name goes ahead of Debian's, whose node is Debian's joint_state_publisher:
-the same /joint_states, every joint at zero, without the sliders' window.
+type 'float'`: its sliders are given floats, which the PyQt5 of Debian 12 refuses).
+`sw2sim ros` stands in for it with a window of sliders (sw2sim/ros/sliders.py), but here a
+window would lie over the screen the picture is cut from. So a package of that name goes
+ahead of any other, whose node is Debian's joint_state_publisher: the same /joint_states,
+every joint at zero, without a window.
 
 Everything started here runs in process groups of its own and is stopped when the picture
 is taken or anything fails.

@@ -1,10 +1,14 @@
 """The stand-in ROS packages, written where roslaunch finds them: `gazebo_ros`,
 `controller_manager` and `tf`, with the launch file and node names the exported
-packages' launch files use. Their nodes run sw2sim.ros.gzserver (the simulation,
-sw2sim.ros.world) and sw2sim.ros.nodes with the Python that runs sw2sim (SW2SIM_PYTHON).
+packages' launch files use, and `joint_state_publisher_gui`, the sliders' window their
+display.launch opens. Their nodes run sw2sim.ros.gzserver (the simulation,
+sw2sim.ros.world), sw2sim.ros.nodes and sw2sim.ros.sliders with the Python that runs
+sw2sim (SW2SIM_PYTHON).
 
-They go on ROS_PACKAGE_PATH after the user's own packages, so a package's gazebo.launch
-runs unchanged.
+They go on ROS_PACKAGE_PATH after the user's own packages and Debian's, so a package's
+gazebo.launch and display.launch run unchanged. Debian 12's own joint_state_publisher_gui
+stops as it opens (sw2sim.ros.sliders says why); installed, it would come first, so
+`make setup` leaves it out.
 """
 
 from __future__ import annotations
@@ -44,6 +48,7 @@ NODES = {
     "gazebo_ros": {"gzserver": "sw2sim.ros.gzserver", "spawn_model": "sw2sim.ros.nodes spawn_model"},
     "controller_manager": {"spawner": "sw2sim.ros.nodes spawner"},
     "tf": {"static_transform_publisher": "sw2sim.ros.nodes static_transform_publisher"},
+    "joint_state_publisher_gui": {"joint_state_publisher_gui": "sw2sim.ros.sliders"},
 }
 
 
