@@ -9,8 +9,9 @@ terminal's `rostopic echo .../state` cannot load control_msgs/JointControllerSta
 - PYTHONPATH gets the generated message classes (sw2sim.ros.messages), which Debian's
   `rostopic`, `rosservice` and rospy nodes import like any installed ones;
 - ROS_PACKAGE_PATH gets the FOLDERs (packages, or folders holding packages) and the
-  stand-in packages (`gazebo_ros`, `controller_manager`, `tf`), so that a package's
-  `roslaunch PKG gazebo.launch` runs with MuJoCo where gzserver would be;
+  stand-in packages (sw2sim.ros.packages: `gazebo_ros`, `controller_manager`, `tf`,
+  `joint_state_publisher_gui`), so that a package's `roslaunch PKG gazebo.launch` runs
+  with MuJoCo where gzserver would be, and its display.launch with a slider window;
 - CMAKE_PREFIX_PATH gets the stand-ins' prefix, a folder laid out as an installed catkin
   workspace (a `.catkin` file and `share/`): a workspace built with it there keeps the
   stand-ins on ROS_PACKAGE_PATH when its `devel/setup.bash` is sourced, as Gazebo's stay
