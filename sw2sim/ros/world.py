@@ -9,7 +9,11 @@ gives ROS what the lessons use of Gazebo:
   `use_sim_time`;
 - `/gazebo/spawn_urdf_model` (what `spawn_model` calls), `/gazebo/pause_physics`,
   `unpause_physics`, `reset_simulation`, `reset_world`, `apply_joint_effort`,
-  `clear_joint_forces` and `get_joint_properties`, with upstream's types;
+  `clear_joint_forces` and `get_joint_properties`, with upstream's types. The two resets
+  do what Gazebo's do (World.reset_simulation and reset_world say what that is, and
+  where it is in upstream's source): both put the model and its joints back where they
+  were spawned, `reset_simulation` also sets simulated time back to 0, and the
+  controllers keep their commands and integral terms;
 - for a URDF with the gazebo_ros_control plugin, its controller manager under
   `<robotNamespace>/controller_manager/` (load, unload and switch), and the controllers
   the parameter server describes: `joint_state_controller/JointStateController`
@@ -27,9 +31,13 @@ gives ROS what the lessons use of Gazebo:
 - gazebo_plugins' `libgazebo_ros_joint_state_publisher.so`: the joints it names on
   `<robotNamespace>/joint_states`.
 
+Every publisher keeps to a rate on simulated time (sw2sim.ros.schedule): `publish_rate: 20`
+gives 20 messages in each simulated second.
+
 `SW2SIM_REALTIME` sets the real-time factor: 1 (the default) for people, 0 for as fast
-as the machine goes (tests). `SW2SIM_VIEW=1` shows the simulation in MuJoCo's viewer
-(sw2sim.ros.viewer).
+as the machine goes (tests), kept from the last time simulated time was set back or held
+(a reset, a pause), so that the simulation never races to make up for them.
+`SW2SIM_VIEW=1` shows the simulation in MuJoCo's viewer (sw2sim.ros.viewer).
 """
 
 from __future__ import annotations
@@ -48,6 +56,7 @@ import mujoco
 import numpy as np
 
 from . import hardware
+from .schedule import SLACK, Schedule
 
 CLOCK_HZ = 100.0          # /clock messages per simulated (and at most per wall) second
 STATE_HZ = 50.0           # controller state messages per simulated second
@@ -96,10 +105,22 @@ class Controller:
     command: float = 0.0
     publishers: tuple = ()
     subscriber: object = None
-    next_publish: float = 0.0
-    places: tuple | None = None   # (model, qpos address, dof address, actuator, timestep)
+    schedule: Schedule | None = None   # when it publishes next (set when it starts)
+    plugin: bool = False      # gazebo_plugins' joint state publisher, not a ros_control one
+    places: tuple | None = None   # (model, qpos address, dof address, actuator)
     error_sum: float = 0.0    # the PID's integrated error
     integral: float = 0.0     # the PID's integral term, in N or N·m
+
+
+@dataclasses.dataclass
+class Effort:
+    """One `apply_joint_effort` request, as gazebo_ros_api_plugin.cpp keeps it (a
+    ForceJointJob): applied at every step from `start` until `until` (None: until
+    cleared), added to the other requests on the same joint (ODE adds each SetForce)."""
+    joint: str
+    effort: float
+    start: float
+    until: float | None
 
 
 class World:
@@ -112,10 +133,14 @@ class World:
         self.namespace = ""
         self.paused = False
         self.controllers: dict[str, Controller] = {}
-        self.efforts: dict[str, tuple[float, float | None]] = {}  # joint -> (effort, until)
+        self.efforts: list[Effort] = []
         self.handles: dict[str, hardware.Handle] = {}
-        self.next_clock = 0.0
+        self.clock_ticks = Schedule(1.0 / CLOCK_HZ)
         self.next_clock_wall = 0.0
+        # gazebo_ros_control's last_update_sim_time_ros_: the controllers' last update
+        self.last_update = 0.0
+        # (wall time, simulated time) from which the real-time factor is kept
+        self.pace_from = (time.monotonic(), 0.0)
 
     # -- the model ---------------------------------------------------------------------
     def spawn(self, model_xml: str, namespace: str) -> str:
@@ -132,6 +157,7 @@ class World:
             self.namespace = "/" + (ns or namespace or "").strip("/")
             if self.namespace == "/":
                 self.namespace = ""
+            self.pace_from = (time.monotonic(), self.time)
         if plugin is not None:
             self._controller_manager()
         publisher = package.robot.find(
@@ -146,22 +172,36 @@ class World:
         return [j for j in range(self.model.njnt) if int(self.model.jnt_type[j]) in moving]
 
     def step(self) -> None:
+        """One physics step, and what is due after it. Under the lock from start to end:
+        a reset between the step and its messages would otherwise let a time from before
+        the reset out on /clock after it."""
         with self.lock:
             if self.model is None or self.paused:
                 return
             m, d = self.model, self.data
             d.qfrc_applied[:] = 0
-            for joint, (effort, until) in list(self.efforts.items()):
-                if until is not None and d.time >= until:
-                    del self.efforts[joint]
-                    continue
-                d.qfrc_applied[m.jnt_dofadr[m.joint(joint).id]] += effort
+            for job in list(self.efforts):
+                if job.until is not None and d.time >= job.until:
+                    self.efforts.remove(job)
+                elif d.time >= job.start - SLACK:
+                    d.qfrc_applied[m.jnt_dofadr[m.joint(job.joint).id]] += job.effort
+            # gazebo_ros_control_plugin.cpp Update: the period since the last update (one
+            # step, except after a reset: see reset_world)
+            period = d.time + float(m.opt.timestep) - self.last_update
+            self.last_update += period
             for c in self.controllers.values():
                 if c.running and c.actuator is not None:
-                    self._drive(c)
+                    self._drive(c, period)
             mujoco.mj_step(m, d)
-            now = d.time
-        self._publish(now)
+            self._publish(d.time)
+
+    def keep_pace(self, realtime: float) -> None:
+        """Wait until simulated time runs no more than `realtime` times as fast as the
+        wall clock, counted from `pace_from`."""
+        wall, sim = self.pace_from
+        ahead = (self.time - sim) / realtime - (time.monotonic() - wall)
+        if ahead > 0.002:
+            time.sleep(ahead)
 
     @property
     def time(self) -> float:
@@ -190,7 +230,10 @@ class World:
         topic = f"/{namespace}/joint_states" if namespace else "/joint_states"
         rate = float(plugin.findtext("updateRate") or 100)
         publisher = Controller("gazebo_joint_state_publisher", JOINT_STATE, None,
-                               {"publish_rate": rate, "joints": names}, running=True)
+                               {"publish_rate": rate, "joints": names}, running=True,
+                               plugin=True)
+        # its Load sets last_update_time_ to the time: the first message one period later
+        publisher.schedule = Schedule(self._period(publisher), self.time, 1)
         publisher.publishers = (self.rospy.Publisher(topic, JointState, queue_size=10),)
         self.controllers[publisher.name] = publisher
 
@@ -256,6 +299,9 @@ class World:
                 controller.command = float(message.data)
 
             c.subscriber = rospy.Subscriber(f"{topic}/command", Float64, command)
+        # JointStateController::starting sets last_publish_time_ a period and a bit back:
+        # the first message at once
+        c.schedule = Schedule(self._period(c), self.time)
         c.running = True
 
     def _stop(self, c: Controller) -> None:
@@ -276,32 +322,24 @@ class World:
         law = hardware.controller(c.kind, c.settings.get("pid") or {}, setpoint)
         return (law[0] + c.integral, law[1], law[2])
 
-    def _integrate(self, c: Controller, q: float, v: float) -> None:
-        """One step of the PID's integral term on this step's error."""
-        if c.kind not in (POSITION, VELOCITY):
-            return
-        setpoint = hardware.command(c.kind, c.command, self.handles.get(c.joint))
-        error = setpoint - (q if c.kind == POSITION else v)
-        c.error_sum, c.integral = hardware.integral(c.settings.get("pid") or {}, c.error_sum,
-                                                    error, float(self.model.opt.timestep))
-
-    def _drive(self, c: Controller) -> None:
+    def _drive(self, c: Controller, period: float) -> None:
         """Set the controller's actuator to the effort law that holds in this state:
-        force = ctrl + biasprm[1] * q + biasprm[2] * v. What `_integrate` and `_law` do,
-        with the joint's and the actuator's places in the model looked up once per model
-        (this runs every step, ten thousand times a second at ten times real time)."""
+        force = ctrl + biasprm[1] * q + biasprm[2] * v, after one update of the PID's
+        integral term over `period` on this state's error; what `_law` gives, with the
+        joint's and the actuator's places in the model looked up once per model (this
+        runs every step, ten thousand times a second at ten times real time)."""
         m, d = self.model, self.data
         if c.places is None or c.places[0] is not m:
             j = m.joint(c.joint).id
             c.places = (m, int(m.jnt_qposadr[j]), int(m.jnt_dofadr[j]),
-                        m.actuator(c.actuator).id, float(m.opt.timestep))
-        _, qadr, vadr, a, dt = c.places
+                        m.actuator(c.actuator).id)
+        _, qadr, vadr, a = c.places
         q, v = float(d.qpos[qadr]), float(d.qvel[vadr])
         handle, pid = self.handles.get(c.joint), c.settings.get("pid") or {}
         setpoint = hardware.command(c.kind, c.command, handle)
         if c.kind in (POSITION, VELOCITY):
             error = setpoint - (q if c.kind == POSITION else v)
-            c.error_sum, c.integral = hardware.integral(pid, c.error_sum, error, dt)
+            c.error_sum, c.integral = hardware.integral(pid, c.error_sum, error, period)
         law = hardware.controller(c.kind, pid, setpoint)
         law = hardware.effort((law[0] + c.integral, law[1], law[2]), handle, q, v)
         d.ctrl[a] = law[0]
@@ -323,21 +361,26 @@ class World:
         return name
 
     # -- publishing ----------------------------------------------------------------------
+    @staticmethod
+    def _period(c: Controller) -> float:
+        if c.kind != JOINT_STATE:
+            return 1.0 / STATE_HZ
+        return 1.0 / (float(c.settings.get("publish_rate", STATE_HZ)) or STATE_HZ)
+
     def _publish(self, now: float) -> None:
         rospy = self.rospy
-        wall, period = time.monotonic(), 1.0 / CLOCK_HZ
+        wall, period = time.monotonic(), self.clock_ticks.period
         # On wall time, ticks keep to a schedule of CLOCK_HZ a second, with half a period
         # of slack: at real time the wall clock's jitter then never holds a tick back.
-        if now >= self.next_clock - 1e-9 and wall + period / 2 >= self.next_clock_wall:
+        if self.clock_ticks.due(now) and wall + period / 2 >= self.next_clock_wall:
             from rosgraph_msgs.msg import Clock
             self.clock.publish(Clock(clock=rospy.Time.from_sec(now)))
-            self.next_clock = now + period
+            self.clock_ticks.advance(now)
             self.next_clock_wall = max(self.next_clock_wall, wall - period / 2) + period
         for c in list(self.controllers.values()):
-            if not c.running or now < c.next_publish:
+            if not c.running or c.schedule is None or not c.schedule.due(now):
                 continue
-            rate = float(c.settings.get("publish_rate", STATE_HZ)) or STATE_HZ
-            c.next_publish = now + 1.0 / rate
+            c.schedule.advance()
             with self.lock:
                 message = (self._joint_states(now, c.settings.get("joints"))
                            if c.kind == JOINT_STATE else self._state(c, now))
@@ -373,6 +416,58 @@ class World:
         message.header.stamp = self.rospy.Time.from_sec(now)
         return message
 
+    # -- resets --------------------------------------------------------------------------
+    def reset_simulation(self) -> None:
+        """gazebo_ros_api_plugin.cpp resetSimulation calls World::Reset (gazebo11,
+        World.cc): ResetTime sets simulated time back to 0, and every model is reset as by
+        reset_world; the pause stays as it was. Of the publishers, each keeps its own
+        schedule as upstream does: gazebo_plugins' joint state publisher starts again from
+        the new time (gazebo_ros_joint_state_publisher.cpp OnUpdate, "Negative joint state
+        update time difference detected"), a controller's state goes on (a position or
+        velocity controller publishes it every tenth update, whatever the time:
+        joint_position_controller.cpp update), while JointStateController
+        keeps its `last_publish_time_` and stays silent until simulated time passes it
+        again (joint_state_controller.cpp update; gazebo_ros_pkgs issue #1368). /clock
+        gives the new time at the next step, whatever the wall clock says."""
+        with self.lock:
+            if self.model is None:
+                return
+            self._reset_model(0.0)
+            self.clock_ticks.restart(0.0)
+            self.next_clock_wall = 0.0
+            for c in self.controllers.values():
+                if c.schedule is None:
+                    continue
+                if c.plugin:
+                    self.rospy.logwarn("Negative joint state update time difference detected.")
+                    c.schedule.restart(0.0, at_once=False)
+                elif c.kind != JOINT_STATE:
+                    c.schedule.restart(0.0)
+            self.pace_from = (time.monotonic(), 0.0)
+
+    def reset_world(self) -> None:
+        """gazebo_ros_api_plugin.cpp resetWorld calls World::ResetEntities(MODEL): each
+        Model::Reset (gazebo11, Model.cc) puts the model's pose back, zeroes its links'
+        velocities and forces and its joints' velocities, and calls its plugins' Reset.
+        Simulated time goes on."""
+        with self.lock:
+            if self.model is not None:
+                self._reset_model(self.time)
+
+    def _reset_model(self, now: float) -> None:
+        """The model as spawned, at simulated time `now`. What stays, as in Gazebo: each
+        controller's command and integral term (gazebo_ros_control resets controllers only
+        when an e-stop is released, never on a reset), and the queued efforts of
+        apply_joint_effort, each still due at its own start time. gazebo_ros_control's
+        Reset() sets its last update time back to 0 (gazebo_ros_control_plugin.cpp
+        Reset), so the controllers' first update after a reset_world integrates the
+        error over the whole time since 0."""
+        m, d = self.model, self.data
+        mujoco.mj_resetData(m, d)
+        d.time = now
+        mujoco.mj_forward(m, d)
+        self.last_update = 0.0
+
     # -- /gazebo -------------------------------------------------------------------------
     def services(self) -> None:
         from gazebo_msgs.srv import (ApplyJointEffort, ApplyJointEffortResponse,
@@ -402,12 +497,12 @@ class World:
                     return ApplyJointEffortResponse(True, "duration 0: nothing applied")
                 start = max(req.start_time.to_sec(), self.time)
                 until = None if duration < 0 else start + max(duration, self.model.opt.timestep)
-                self.efforts[req.joint_name] = (req.effort, until)
+                self.efforts.append(Effort(req.joint_name, req.effort, start, until))
             return ApplyJointEffortResponse(True, "")
 
         def clear(req):
             with self.lock:
-                self.efforts.pop(req.joint_name, None)
+                self.efforts = [job for job in self.efforts if job.joint != req.joint_name]
             return JointRequestResponse()
 
         def properties(req):
@@ -428,15 +523,18 @@ class World:
             return EmptyResponse()
 
         def unpause(_):
-            self.paused = False
+            with self.lock:
+                if self.paused:
+                    self.pace_from = (time.monotonic(), self.time)
+                self.paused = False
             return EmptyResponse()
 
-        def reset(_):
-            with self.lock:
-                if self.model is not None:
-                    mujoco.mj_resetData(self.model, self.data)
-                    mujoco.mj_forward(self.model, self.data)
-                    self.next_clock = 0.0
+        def reset_simulation(_):
+            self.reset_simulation()
+            return EmptyResponse()
+
+        def reset_world(_):
+            self.reset_world()
             return EmptyResponse()
 
         rospy.Service("/gazebo/spawn_urdf_model", SpawnModel, spawn)
@@ -445,8 +543,8 @@ class World:
         rospy.Service("/gazebo/get_joint_properties", GetJointProperties, properties)
         rospy.Service("/gazebo/pause_physics", Empty, pause)
         rospy.Service("/gazebo/unpause_physics", Empty, unpause)
-        rospy.Service("/gazebo/reset_simulation", Empty, reset)
-        rospy.Service("/gazebo/reset_world", Empty, reset)
+        rospy.Service("/gazebo/reset_simulation", Empty, reset_simulation)
+        rospy.Service("/gazebo/reset_world", Empty, reset_world)
 
 
 def why_not_spawned(exc: Exception) -> str:
@@ -471,7 +569,6 @@ def main(argv: list[str] | None = None) -> int:
     if os.environ.get("SW2SIM_VIEW") == "1":
         from .viewer import Window
         window = Window(world)
-    started, sim_start = time.monotonic(), 0.0
     try:
         while not rospy.is_shutdown():
             if window is not None:
@@ -481,9 +578,7 @@ def main(argv: list[str] | None = None) -> int:
                 continue
             world.step()
             if realtime > 0:
-                ahead = (world.time - sim_start) / realtime - (time.monotonic() - started)
-                if ahead > 0.002:
-                    time.sleep(ahead)
+                world.keep_pace(realtime)
     except KeyboardInterrupt:
         pass
     if window is not None:

@@ -24,7 +24,9 @@ def main():
     pause = rospy.ServiceProxy("/gazebo/pause_physics", Empty)
     unpause = rospy.ServiceProxy("/gazebo/unpause_physics", Empty)
 
-    rate = rospy.Rate(RATE_HZ)
+    # reset=True: when a reset sets the clock back, rate.sleep() returns and the period
+    # starts again (without it, it raises ROSTimeMovedBackwardsException: the node dies).
+    rate = rospy.Rate(RATE_HZ, reset=True)
     while not rospy.is_shutdown():
         pause()
         for joint in WHEEL_JOINTS:

@@ -18,7 +18,7 @@ def main():
     rospy.init_node("random_setpoints")
     middle = rospy.Publisher("mid_arm", Float64, queue_size=1)
     end = rospy.Publisher("end_arm", Float64, queue_size=1)
-    rate = rospy.Rate(RATE)
+    rate = rospy.Rate(RATE, reset=True)   # carries on when a reset sets the clock back
     while not rospy.is_shutdown():
         a, b = random.uniform(-LIMIT, LIMIT), random.uniform(-LIMIT, LIMIT)
         rospy.loginfo("new setpoints: middle %.4f rad, end %.4f rad", a, b)

@@ -66,7 +66,7 @@ class Ackermann:
 def main():
     rospy.init_node("ackermann")
     node = Ackermann()
-    rate = rospy.Rate(RATE)
+    rate = rospy.Rate(RATE, reset=True)   # carries on when a reset sets the clock back
     while not rospy.is_shutdown():
         node.update()
         rate.sleep()
