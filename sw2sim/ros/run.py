@@ -2,8 +2,12 @@
 Gazebo's place.
 
 It uses the master at ROS_MASTER_URI when one answers, and starts its own otherwise (on
-127.0.0.1). Everything it starts runs in process groups of its own, stopped (SIGINT, then
-SIGKILL) at the end: after --duration seconds, when the launch ends, or on Ctrl-C.
+127.0.0.1, at ROS_MASTER_URI's port when that names this machine). Everything it starts
+runs in process groups of its own, stopped (SIGINT, then SIGKILL) at the end: after
+--duration seconds, when the launch ends, when a node of the launch could not start or
+died (sw2sim.ros.launch_faults: the node is named, the status is 1), or on SIGINT, SIGTERM
+or SIGHUP (sw2sim.ros.stop_signals: status 128 + the signal's number). Should `sw2sim ros`
+itself be killed, the watchdog it starts first stops the rest (sw2sim.ros.watchdog).
 """
 
 from __future__ import annotations
@@ -16,6 +20,7 @@ import socket
 import subprocess
 import sys
 import time
+import urllib.parse
 from pathlib import Path
 
 DEBIAN = ("python3-rospy python3-roslaunch python3-rostopic python3-rosservice python3-rosnode "
@@ -23,6 +28,8 @@ DEBIAN = ("python3-rospy python3-roslaunch python3-rostopic python3-rosservice p
           "python3-tf2-msgs python3-genpy python3-genmsg ros-std-msgs ros-geometry-msgs "
           "ros-robot-state-publisher")
 STOP_WAIT = 5.0
+FAULT_SETTLE = 1.0   # s after a first fault for the lines about others, before stopping
+LOCAL_NAMES = ("127.0.0.1", "localhost")
 
 
 def missing() -> str | None:
@@ -54,6 +61,20 @@ def _port() -> int:
     with socket.socket() as s:
         s.bind(("127.0.0.1", 0))
         return s.getsockname()[1]
+
+
+def _master_port(uri: str | None) -> int:
+    """The port for the master started here: ROS_MASTER_URI's when it names this machine
+    and the port is free, so that commands in other terminals with the same ROS_MASTER_URI
+    find it; otherwise 11311, or any free port when that is taken."""
+    try:
+        parsed = urllib.parse.urlsplit(uri or "")
+        port = parsed.port
+    except ValueError:
+        return _port()
+    if parsed.hostname in LOCAL_NAMES and port and _free(port):
+        return port
+    return _port()
 
 
 def environment(package_root: Path, realtime: float) -> dict[str, str]:
@@ -175,35 +196,112 @@ def run(path: str, launch: str | None = None, duration: float | None = None,
         env["SW2SIM_VIEW"] = "1"
         from .. import gl
         gl.for_window(env)           # the viewer's window, not the off-screen default
-    started: list[subprocess.Popen] = []
-    try:
+    return _Run(launch_file, env, _told(say)).run(duration)
+
+
+def _told(say):
+    """`say`, silent once there is nowhere to say it (SIGHUP: the terminal is gone)."""
+    def tell(text: str) -> None:
+        try:
+            say(text)
+        except OSError:
+            pass
+    return tell
+
+
+class _Run:
+    """One run: the watchdog, the master (when none answers), roslaunch; stopped in the
+    reverse order, however the run ends."""
+
+    def __init__(self, launch_file: Path, env: dict[str, str], tell):
+        self.launch_file, self.env, self.tell = launch_file, env, tell
+        self.started: list[subprocess.Popen] = []
+        self.roslaunch: subprocess.Popen | None = None
+        self.errors = None            # launch_faults.ErrorPassage, once roslaunch runs
+        self.launch_ended = False     # roslaunch ended by itself
+
+    def run(self, duration: float | None) -> int:
+        from . import watchdog
+        from .stop_signals import Stopped, StopSignals
+        mark = watchdog.new_mark()
+        self.env[watchdog.VARIABLE] = mark   # on every process of the run
+        guard = None
+        with StopSignals() as signals:
+            try:
+                guard = watchdog.start(mark)
+                status = self._launch(duration)
+            except Stopped:
+                status = None
+                self.tell(f"sw2sim ros: {signals.name}: stopping the launch and its nodes")
+            finally:
+                signals.hold()
+                self._stop()
+                if guard:
+                    watchdog.finish(guard)
+        return self._verdict(status, signals)
+
+    def _launch(self, duration: float | None) -> int | None:
+        """Start the master (if needed) and the launch, and wait for the run's end; a
+        status to return, or None for the verdict on the launch."""
+        env = self.env
         uri = env.get("ROS_MASTER_URI")
         if not uri or not _answers(uri):
-            port = _port()
+            port = _master_port(uri)
             uri = env["ROS_MASTER_URI"] = f"http://127.0.0.1:{port}"
-            started.append(subprocess.Popen(["roscore", "-p", str(port)], env=env,
-                                            start_new_session=True, preexec_fn=with_ctrl_c,
-                                            stdout=subprocess.DEVNULL,
-                                            stderr=subprocess.DEVNULL))
+            self.started.append(subprocess.Popen(["roscore", "-p", str(port)], env=env,
+                                                 start_new_session=True, preexec_fn=with_ctrl_c,
+                                                 stdout=subprocess.DEVNULL,
+                                                 stderr=subprocess.DEVNULL))
             deadline = time.monotonic() + 15
             while not _answers(uri):
                 if time.monotonic() > deadline:
-                    say("sw2sim ros: roscore did not start")
+                    self.tell("sw2sim ros: roscore did not start")
                     return 2
                 time.sleep(0.1)
         from ..archive import shown
-        say(f"sw2sim ros: {shown(launch_file) or launch_file} on {uri}, MuJoCo standing in "
-            "for Gazebo")
-        roslaunch = subprocess.Popen(["roslaunch", "--wait", str(launch_file)], env=env,
-                                     start_new_session=True, preexec_fn=with_ctrl_c)
-        started.append(roslaunch)
+        from .launch_faults import ErrorPassage
+        self.tell(f"sw2sim ros: {shown(self.launch_file) or self.launch_file} on {uri}, MuJoCo "
+                  "standing in for Gazebo")
+        self.roslaunch = subprocess.Popen(["roslaunch", "--wait", str(self.launch_file)],
+                                          env=env, start_new_session=True,
+                                          preexec_fn=with_ctrl_c, stderr=subprocess.PIPE)
+        self.started.append(self.roslaunch)
+        self.errors = ErrorPassage(self.roslaunch.stderr)
         end = None if duration is None else time.monotonic() + duration
-        while roslaunch.poll() is None and (end is None or time.monotonic() < end):
+        while self.roslaunch.poll() is None:
+            now = time.monotonic()
+            if end is not None and now >= end:
+                return None
+            if self.errors.faults and now - self.errors.faults[0].at >= FAULT_SETTLE:
+                return None
             time.sleep(0.1)
-        return 0 if roslaunch.returncode in (None, 0) else 1
-    except KeyboardInterrupt:
-        return 130
-    finally:
-        # the launch first, then the master its nodes unregister from
-        for process in reversed(started):
+        self.launch_ended = True
+        self.errors.wait(FAULT_SETTLE)   # its last lines, still in the pipe
+        return None
+
+    def _stop(self) -> None:
+        """The launch first, then the master its nodes unregister from."""
+        if self.errors:
+            self.errors.stop_watching()
+        for process in reversed(self.started):
             stop(process)
+        if self.errors:
+            self.errors.wait(STOP_WAIT)
+
+    def _verdict(self, status: int | None, signals) -> int:
+        faults = self.errors.faults if self.errors else []
+        if faults:
+            from .launch_faults import launch_nodes, summary
+            for line in summary(faults, launch_nodes(self.launch_file, self.env)):
+                self.tell(f"sw2sim ros: {line}")
+        if signals.received:
+            return signals.exit_status
+        if status is not None:
+            return status
+        if faults:
+            return 1
+        code = self.roslaunch.returncode if self.roslaunch else None
+        if self.launch_ended and code != 0:
+            self.tell(f"sw2sim ros: roslaunch ended with exit code {code}; see the lines above")
+            return 1
+        return 0
