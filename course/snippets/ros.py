@@ -177,8 +177,8 @@ class Session:
     nodes: list[Block] = field(default_factory=list)
     stopped: list[int] = field(default_factory=list)   # every process id it has stopped
     terminals: dict[int, Terminal] = field(default_factory=dict)
-    # Called with each command about to run, once what it names exists: a test's observer
-    # starts listening there, before the command has any effect.
+    # Called with each command about to be typed, before anything of it (the Ctrl-C of
+    # its block included) happens: a test's observer starts or ends listening there.
     before_command: Callable[[Command], None] | None = None
 
     def __enter__(self) -> Session:
@@ -234,7 +234,6 @@ class Session:
         self.prepare()
         if self.page.ros_running:
             t = self.terminal(1, f"{self.page.path}:1")
-            t.cwd = self.place(blocks[0].ros)
             self.command(Command(self.page.ros_running, f"{self.page.path}:1 (ros_running)",
                                  blocks[0].ros), t)
         for block in blocks:
@@ -242,18 +241,8 @@ class Session:
                 self.node(block)
                 continue
             t = self.terminal(block.terminal, block.location)
-            if t.busy is not None:          # the reader's Ctrl-C, to type here
-                self._stop(t.busy)
-                self.running.remove(t.busy)
-                t.busy = None
-            t.cwd = self.place(block.ros)
-            for command in commands(block):
-                if t.busy is not None:
-                    raise RosBlockError(command.location, f"terminal {t.number} is busy with "
-                                        f"`{t.busy.command.text}`: put this command in a block "
-                                        f"of its own, typed into another terminal "
-                                        f"(data-terminal), and say so on the page")
-                self.command(command, t)
+            for n, command in enumerate(commands(block)):
+                self.command(command, t, opens_block=n == 0)
 
     def place(self, ros: str) -> Path:
         """The folder a block's `data-ros` names, in the reader's clone."""
@@ -266,16 +255,29 @@ class Session:
                                                 f"{package}/ (include_code and data-file)")
         self.nodes.append(block)
 
-    def command(self, command: Command, t: Terminal) -> None:
+    def command(self, command: Command, t: Terminal, opens_block: bool = True) -> None:
+        """Type `command` into terminal `t`; the first of a block also changes to the
+        block's folder, after a Ctrl-C of what keeps the terminal busy."""
         words = command.words
         if not words:
             return
+        if self.before_command is not None:
+            self.before_command(command)
+        if t.busy is not None:
+            if not opens_block:
+                raise RosBlockError(command.location, f"terminal {t.number} is busy with "
+                                    f"`{t.busy.command.text}`: put this command in a block "
+                                    f"of its own, typed into another terminal "
+                                    f"(data-terminal), and say so on the page")
+            self._stop(t.busy)              # the reader's Ctrl-C, to type here
+            self.running.remove(t.busy)
+            t.busy = None
+        if opens_block:
+            t.cwd = self.place(command.package)
         if command.program in WINDOWS or self.launches_a_window(command, t):
             self.windows.append(f"{command.location}: {command.text} (opens a window)")
             return
         self.wait_for_names(command)
-        if self.before_command is not None:
-            self.before_command(command)
         if command.keeps_running:
             if words[0] == "roslaunch":
                 self.stop_launches()
