@@ -74,13 +74,21 @@ Compares your export of a lesson's model (MINE) with the lesson's package
 joint types, origins, axes and limits, and each link's mass, centre of mass,
 inertia and mesh size. Links are matched by name, or by their place in the tree
 where the names differ (which is reported). Directions are the model's: the axes
-of the base link's frame.
+of the base link's frame. A mesh with no triangles or no volume, a number off by
+a unit's factor (millimetres, centimetres, degrees, or the decimal point) and an
+inertia taken about the link's origin instead of its centre of mass are named so.
 
 A correct SolidWorks model matches within: mass 1 %, inertia 2 % (the lesson's
 masses come from faceted meshes, SolidWorks' from the exact solid), 1 mm and
 0.5 degrees. Each difference is one line:
   FILE:LINE: [CODE] joint or link: yours, the reference's (by how much). Cause and fix
-Exit status: 0 the export matches, 1 it differs, 2 a package cannot be read.
+Packages of two different robots are not compared: when under half of the links
+are alike (by name, or by place and joint type), or when MINE agrees (place and
+mass) with another lesson's package in examples/ in at least half of its links
+and with REFERENCE in fewer, the message says it looks like another lesson's
+package and names the one it resembles most.
+Exit status: 0 the export matches, 1 it differs, 2 nothing was compared (a
+package cannot be read, or it looks like another lesson's package).
 
 examples:
   sw2sim compare my_export examples/example_1
@@ -150,7 +158,12 @@ MuJoCo standing in for Gazebo: gazebo_ros (empty_world.launch, spawn_model, the
 /gazebo services), controller_manager's spawner and the ros_control controllers the
 package's YAML names (joint_state_controller, effort_controllers position, velocity and
 effort controllers). It uses the master at ROS_MASTER_URI if one answers, else starts
-its own, and stops everything it started on exit, Ctrl-C or --duration.
+its own, and stops everything it started on exit, Ctrl-C or --duration, and also when it
+is killed. Node types the exporter wrote that Noetic renamed (robot_state_publisher's
+`state_publisher`) run as what they became, in a copy of the launch file. Its second
+line is what another terminal runs first, for `rostopic` and `rosservice` there.
+Exit status: 0 done, 1 a node of the launch could not start or died (named), 2 it could
+not run, 130 Ctrl-C, 143 SIGTERM, 129 SIGHUP.
 
 examples:
   sw2sim ros examples/example_3 --duration 20

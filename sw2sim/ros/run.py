@@ -78,17 +78,13 @@ def _master_port(uri: str | None) -> int:
 
 
 def environment(package_root: Path, realtime: float) -> dict[str, str]:
-    from . import messages, packages
-    generated = messages.ensure()
-    standins = packages.write(generated.parent / "ros-packages")
+    """This process's environment with what `sw2sim ros-env` gives a terminal (the
+    stand-ins, the message classes; sw2sim.ros.terminal), the package's folder on
+    ROS_PACKAGE_PATH, and the real-time factor."""
+    from .terminal import variables
     env = dict(os.environ)
-    user = env.get("ROS_PACKAGE_PATH") or "/usr/share"
-    env["ROS_PACKAGE_PATH"] = os.pathsep.join([str(package_root.parent), user, str(standins)])
-    env["PYTHONPATH"] = os.pathsep.join(p for p in [str(generated), env.get("PYTHONPATH")] if p)
-    env[messages.FOLDER_VARIABLE] = str(generated)
-    env["SW2SIM_PYTHON"] = sys.executable
+    env.update(variables([package_root.parent], env))
     env["SW2SIM_REALTIME"] = f"{realtime:g}"
-    env.setdefault("ROS_IP", "127.0.0.1")
     # Nodes that start with `#!/usr/bin/env python3` need the Python that has rospy.
     env["PATH"] = os.pathsep.join(["/usr/bin", env.get("PATH", "")])
     return env
@@ -192,11 +188,28 @@ def run(path: str, launch: str | None = None, duration: float | None = None,
         say(f"sw2sim ros: {launch_file} does not exist; give the launch file with --launch FILE")
         return 2
     env = environment(package.root, realtime)
+    from . import messages
+    from .launch_fixes import adapt
+    launch_file, notes = adapt(launch_file, Path(env[messages.FOLDER_VARIABLE]).parent
+                               / "launch-files")
+    for note in notes:
+        say(f"sw2sim ros: {note}")
     if view:
         env["SW2SIM_VIEW"] = "1"
         from .. import gl
         gl.for_window(env)           # the viewer's window, not the off-screen default
     return _Run(launch_file, env, _told(say)).run(duration)
+
+
+def _terminal_line(env: dict[str, str]) -> str:
+    """What another terminal runs to reach this run: the master's address unless it is
+    ROS's default, and `sw2sim ros-env` through the course's sw2sim."""
+    uri = env.get("ROS_MASTER_URI", "")
+    beside = Path(sys.executable).with_name("sw2sim")   # this environment's, activated or not
+    line = f'eval "$({beside if beside.is_file() else "sw2sim"} ros-env)"'
+    if uri.rstrip("/") not in ("http://localhost:11311", "http://127.0.0.1:11311"):
+        line = f"export ROS_MASTER_URI={uri}; {line}"
+    return line
 
 
 def _told(say):
@@ -262,6 +275,8 @@ class _Run:
         from .launch_faults import ErrorPassage
         self.tell(f"sw2sim ros: {shown(self.launch_file) or self.launch_file} on {uri}, MuJoCo "
                   "standing in for Gazebo")
+        self.tell("sw2sim ros: for ROS commands in another terminal, run there first: "
+                  + _terminal_line(env))
         self.roslaunch = subprocess.Popen(["roslaunch", "--wait", str(self.launch_file)],
                                           env=env, start_new_session=True,
                                           preexec_fn=with_ctrl_c, stderr=subprocess.PIPE)
