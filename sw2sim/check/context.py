@@ -168,7 +168,8 @@ class Context:
         if not filename or self.package is None:
             return None
         try:
-            return self.package.resolve_mesh(filename, mesh.sourceline)
+            return self.package.resolve_mesh(in_folder_given(filename, self.package.name),
+                                             mesh.sourceline)
         except (LoadError, OSError, ValueError, RuntimeError):  # RuntimeError: a symlink loop
             return None
 
@@ -193,6 +194,18 @@ class Context:
             loaded = loaded.copy()
             loaded.apply_scale(scale)
         return loaded
+
+
+def in_folder_given(filename: str, name: str) -> str:
+    """A package:// path as the check reads it: in the package at hand (named `name`),
+    whatever package it names. A different name is package-name-mismatch's one finding;
+    the files behind it are still looked for, read and measured, so that one finding never
+    hides what is wrong with each mesh."""
+    if filename.startswith("package://"):
+        other, slash, rest = filename[len("package://"):].partition("/")
+        if slash and other != name:
+            return f"package://{name}/{rest}"
+    return filename
 
 
 def _read_mesh(path: Path):

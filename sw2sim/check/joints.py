@@ -89,16 +89,36 @@ rule("velocity-not-positive", ERROR, "joint", "A joint's velocity limit is zero 
      fix="Enter the joint's top speed (rad/s or m/s), a positive number, as velocity.",
      repair="nothing to change: MuJoCo has no velocity limit, and a velocity actuator gets no "
             "control range from it.")
-rule("mimic-joint-missing", ERROR, "joint", "A <mimic> names a joint that does not exist or "
-     "cannot move",
-     symptom="MuJoCo says \"<mimic> on joint ... ignored; mimic requires revolute, continuous, "
-             "or prismatic joints\", which points at the wrong problem, and drops the coupling; "
-             "ROS refuses the URDF or leaves the joint uncoupled.",
+# What follows a <mimic> that cannot couple anything, in ROS, as their sources read: urdfdom
+# (check_urdf) never looks at the joint a mimic names; joint_state_publisher (noetic-devel)
+# looks it up among the moving joints when it publishes, and a mimic chain that comes back
+# to its start stops it.
+MIMIC_REPAIR = ("the coupling is dropped, so the joint moves on its own, as MuJoCo would do "
+                "with a warning.")
+rule("mimic-joint-missing", ERROR, "joint", "A <mimic> names a joint that does not exist",
+     symptom="check_urdf accepts the URDF (urdfdom never looks the name up), but "
+             "joint_state_publisher stops with a KeyError when it publishes. MuJoCo says "
+             "\"<mimic> on joint ... ignored; mimic requires revolute, continuous, or "
+             "prismatic joints\", which points at the wrong problem, and drops the coupling.",
      cause="A typo in the mimicked joint's name, or a joint renamed in the exporter after the "
            "<mimic> was written by hand.",
      fix="Write the name of the joint to follow, exactly as its <joint name=...> spells it.",
-     repair="the coupling is dropped, so the joint moves on its own, as MuJoCo would do with "
-            "a warning.")
+     repair=MIMIC_REPAIR)
+rule("mimic-joint-not-movable", ERROR, "joint", "A <mimic> names a joint that cannot move: "
+     "a fixed, floating or planar joint, or the joint itself",
+     symptom="check_urdf accepts the URDF (urdfdom never looks at the joint a mimic names). "
+             "joint_state_publisher stops with a KeyError when it publishes (it keeps no "
+             "position for fixed, floating and planar joints), or with \"Found an infinite "
+             "recursive mimic chain\" for a joint that follows itself. MuJoCo says \"<mimic> "
+             "on joint ... ignored; mimic requires revolute, continuous, or prismatic joints\" "
+             "and drops the coupling, or stops (\"repeated in equality constraint\") on a "
+             "joint that follows itself.",
+     cause="The joint to follow was made fixed in the exporter after the <mimic> was "
+           "written, or the <mimic> names the wrong joint (its own name, or the fixed joint "
+           "beside the one meant).",
+     fix="Name a revolute, continuous or prismatic joint in <mimic joint=...>, or make the "
+         "named joint one of those types.",
+     repair=MIMIC_REPAIR)
 rule("limit-on-continuous", WARNING, "joint", "A continuous joint is given lower and upper "
      "limits",
      symptom="Nothing: ROS and MuJoCo ignore lower and upper on a continuous joint, so the "
@@ -245,7 +265,8 @@ def _mimic(ctx, joint, name: str) -> None:
         else:
             kind = "itself" if target == name else f'a {other.get("type")} joint'
             what, fix = f'"{target}" is {kind}, which cannot be followed', None
-        ctx.add("mimic-joint-missing", f'the <mimic> of joint "{name}" names "{target}": '
+        rule_id = "mimic-joint-missing" if other is None else "mimic-joint-not-movable"
+        ctx.add(rule_id, f'the <mimic> of joint "{name}" names "{target}": '
                 f"{what}", line=source_line(mimic, "joint"), fix=fix,
                 repair=repair(f'the coupling of "{name}" to "{target}" is dropped; "{name}" '
                               "moves on its own", (mimic, remove_element)))

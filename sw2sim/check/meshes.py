@@ -184,9 +184,10 @@ def _unresolved(ctx, filename: str, meshes) -> None:
     line = source_line(first, "filename")
     named = f'{_role(first)}: mesh "{filename}"'
     if filename.startswith("package://"):
+        # A path naming another package is looked for in the folder given, as
+        # Context.mesh_file reads it: package-name-mismatch reports the name, and each
+        # missing file is still reported here.
         name, _, rest = filename[len("package://"):].partition("/")
-        if name != package.name:
-            return  # package-name-mismatch (package_xml.py) reports the wrong name
         target = package.root / rest
     elif filename.startswith("file://"):
         target = Path(filename[len("file://"):])
@@ -217,7 +218,10 @@ def _unresolved(ctx, filename: str, meshes) -> None:
                 f"{_also(ctx, meshes)}", line=line)
         return
     hint = ""
-    if filename.startswith("package://"):
+    if filename.startswith("package://") and name != package.name:
+        hint = (f'; "{name}" is not this package\'s name (package-name-mismatch), so the '
+                f"path was read in the folder given, {display(package.root)}")
+    elif filename.startswith("package://"):
         hint = (f"; package://{package.name}/ stands for the package folder "
                 f"{display(package.root)}")
     elif not filename.startswith("file://"):

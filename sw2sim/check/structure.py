@@ -11,6 +11,7 @@ the way the URDF parsers do (or give None, reported once by `number-invalid`), a
 
 from __future__ import annotations
 
+import re
 from collections import defaultdict
 from difflib import get_close_matches
 
@@ -21,8 +22,11 @@ from .urdf import number, owner
 JOINT_TYPES = ("revolute", "continuous", "prismatic", "fixed", "floating", "planar")
 
 rule("name-missing", ERROR, "structure", "A link or joint has no name",
-     symptom="ROS refuses the URDF (\"No name given for the link\" or the joint); MuJoCo "
-             "names the body or joint after nothing, and joints cannot refer to the link.",
+     symptom="ROS refuses a link or joint without a name attribute (\"No name given for the "
+             "link\", \"unnamed joint found\"); check_urdf accepts a joint whose name is "
+             "empty or spaces, but ROS's tools and controllers address joints by name, so "
+             "nothing can command it. MuJoCo names the body or joint after nothing, and "
+             "joints cannot refer to the link.",
      cause="A hand edit that dropped or emptied the name attribute; the exporter always "
            "writes one.",
      fix="Give the element a name that is unique among links (or joints), such as the "
@@ -57,8 +61,10 @@ rule("joint-child-missing", ERROR, "structure", "A joint has no child link, or n
      fix="Write <child link=\"...\"/> with the name of an existing link, or export again "
          "so the joint and link names agree.")
 rule("link-two-parents", ERROR, "structure", "A link is the child of two joints",
-     symptom="ROS refuses the URDF; MuJoCo keeps one of the joints and silently drops the "
-             "other, so the mechanism does not move as designed.",
+     symptom="check_urdf accepts the URDF and lists the link under both parents, but ROS "
+             "keeps one joint as its parent (urdfdom the one whose name sorts last, and "
+             "robot_state_publisher with it); MuJoCo also keeps one and silently drops the "
+             "other. Either way the mechanism does not move as designed.",
      cause="An attempt to close a loop, such as a four-bar or a steering trapezoid, in the "
            "URDF. URDF describes trees only: each link has one parent.",
      fix="Keep one joint as the link's parent and remove the other; close the loop in "
@@ -66,8 +72,10 @@ rule("link-two-parents", ERROR, "structure", "A link is the child of two joints"
      seen_in=("onshape-to-robot#94",))
 rule("kinematic-cycle", ERROR, "structure", "Following the joints from parent to child "
      "comes back to the start",
-     symptom="ROS refuses the URDF (no root link, or a loop in the tree); MuJoCo cannot "
-             "build the body tree.",
+     symptom="MuJoCo cannot build the body tree (\"URDF body not found\"). check_urdf "
+             "refuses the URDF when the loop leaves no link without a parent (\"No root link "
+             "found\"); when another link is the root it accepts the file, and the loop's "
+             "links are missing from the tree RViz and robot_state_publisher use.",
      cause="A joint whose child is one of its own ancestors, often from a hand-closed "
            "linkage or a parent and child swapped by mistake.",
      fix="Break the cycle: swap parent and child where they were reversed, or remove the "
@@ -85,8 +93,11 @@ rule("urdf-no-links", ERROR, "structure", "The URDF has no links",
      cause="An export that stopped before writing the links, or the wrong file.",
      fix="Export the assembly again and check the exporter's log for the failure.")
 rule("number-invalid", ERROR, "structure", "A number in the URDF does not parse",
-     symptom="MuJoCo stops with \"bad format in attribute\"; ROS stops with a parse error "
-             "or reads a wrong value.",
+     symptom="MuJoCo stops with \"bad format in attribute\". check_urdf refuses it in a "
+             "joint; in a link's <inertial>, <visual> or <collision> it prints the parse error "
+             "and accepts the file, keeping the link without that element and those after it "
+             "(without its mass, or its shapes), which is how RViz and robot_state_publisher "
+             "then read it.",
      cause="A hand edit with a typo (\"1.0.0\", \"0,5\" with a decimal comma, a unit such as "
            "\"90deg\"), a value that is not finite (\"nan\", \"inf\"), or a vector with too "
            "few or too many entries.",
@@ -94,26 +105,35 @@ rule("number-invalid", ERROR, "structure", "A number in the URDF does not parse"
          "decimal point, and exactly as many as the attribute takes (three for xyz and rpy).")
 
 rule("urdf-version", ERROR, "structure", "The <robot> names a URDF version ROS does not read",
-     symptom="ROS's URDF parser (urdfdom, as in ROS 1 and Debian) refuses the file: \"Invalid "
-             "'version' specified; only version 1.0 is currently supported\", or \"The "
-             "version attribute should be in the form 'x.y'\". MuJoCo ignores the attribute.",
-     cause="A hand edit, or a file written for a newer URDF (version 1.1, which newer "
-           "urdfdom releases read for capsules and quaternions).",
+     symptom="ROS's URDF parser (urdfdom: check_urdf, RViz, robot_state_publisher) refuses the "
+             "file: \"Invalid 'version' specified; only version 1.0 is currently supported\", "
+             "or a word on the attribute's form (\"The version attribute should be in the "
+             "form 'x.y'\", \"Extra characters after the version number\"). MuJoCo ignores "
+             "the attribute.",
+     cause="urdfdom reads version 1.0 only (Debian 12's 3.0.1, every release from 3.0 to "
+           "5.0, and 1.0.4, ROS Noetic's; the 2.x releases ignore the attribute): two whole "
+           "numbers joined by one dot, each read as C's strtol reads it. So \"1.00\", "
+           "\"01.0\" and \" 1.0\" pass, and \"1\", \"1.1\", \"2.0\", \"1.0.0\" and "
+           "\"1.0 \" (a space after it) do not. No urdfdom release reads the proposed URDF 1.1; "
+           "the attribute comes from a hand edit or a tool written for that proposal.",
      fix="Delete version=\"...\" from <robot>, or write version=\"1.0\".",
      blocks=PACKAGING)
 rule("geometry-unknown", ERROR, "structure", "A <geometry> holds no shape URDF knows",
-     symptom="MuJoCo stops with \"geometry specification not found\"; ROS stops with "
-             "\"Unknown geometry type\" and drops the link.",
+     symptom="MuJoCo stops with \"geometry specification not found\". check_urdf prints "
+             "\"Unknown geometry type\" and accepts the file, keeping the link without that "
+             "shape and those after it.",
      cause="A shape URDF does not have (a <cone>, a <plane>), a misspelt one, or an empty "
            "<geometry>: URDF knows <box>, <cylinder>, <sphere> and <mesh>.",
      fix="Use one of <box size>, <cylinder radius length>, <sphere radius> or <mesh "
          "filename>; for any other shape, export it as a mesh.")
-rule("geometry-capsule", ERROR, "structure", "A <geometry> is a <capsule>, which ROS 1 "
+rule("geometry-capsule", ERROR, "structure", "A <geometry> is a <capsule>, which ROS "
      "does not read",
-     symptom="MuJoCo reads it as a capsule; ROS 1's URDF parser stops with \"Unknown "
-             "geometry type 'capsule'\", so RViz and Gazebo never load the robot.",
-     cause="Capsules came into URDF with version 1.1, which only recent urdfdom releases "
-           "read; the SolidWorks exporter never writes them.",
+     symptom="MuJoCo reads it as a capsule. ROS's URDF parser (urdfdom: check_urdf, RViz, "
+             "robot_state_publisher) prints \"Unknown geometry type 'capsule'\" and accepts "
+             "the file, keeping the link without the capsule and the shapes after it: RViz and "
+             "robot_state_publisher work on a robot without it.",
+     cause="Capsules belong to a proposed URDF 1.1 that no urdfdom release reads (up to "
+           "5.0); MuJoCo's URDF import reads them. The SolidWorks exporter never writes them.",
      fix="For ROS 1, replace the capsule by a <cylinder> (and two <sphere> ends, in "
          "collisions of their own) or by a mesh.",
      blocks=PACKAGING)
@@ -129,7 +149,6 @@ rule("geom-name-duplicate", WARNING, "structure", "Two <visual> or <collision> e
          "attributes.")
 
 SHAPES = ("box", "cylinder", "sphere", "mesh")
-VERSION = "1.0"
 
 # The numeric attributes of URDF elements, and how many numbers each one holds.
 NUMERIC = {
@@ -186,13 +205,47 @@ def _geom_names(ctx, links) -> None:
 
 def _version(ctx) -> None:
     version = ctx.robot.get("version")
-    if version is None or version.strip() == VERSION:
+    if version is None:
         return
-    parts = version.strip().split(".")
-    said = ("is not in the form x.y" if len(parts) != 2 or not all(p.isdigit() for p in parts)
-            else f"is not {VERSION}, the only version ROS's parser reads")
-    ctx.add("urdf-version", f'<robot version="{_short(version)}">: the version {said}',
-            line=source_line(ctx.robot, "version"))
+    said = urdfdom_version_error(version)
+    if said is not None:
+        ctx.add("urdf-version", f'<robot version="{_short(version)}">: urdfdom refuses it '
+                f'("{said}")', line=source_line(ctx.robot, "version"))
+
+
+# urdfdom's URDFVersion reads each part with C's strtol: white space, a sign, digits.
+_STRTOL = re.compile(r"[ \t\n\v\f\r]*[+-]?[0-9]+")
+_LONG = 2 ** 63
+
+
+def urdfdom_version_error(text: str) -> str | None:
+    """urdfdom's message about <robot version=text>, or None when it reads version 1.0.
+
+    As urdf_export_helpers::URDFVersion does it (urdfdom 1.0.4, 3.0 to 5.0): the text is
+    split at dots, an empty last part dropped; there must be two parts, each a base-10
+    strtol number (leading white space and a sign allowed, nothing after the digits, not
+    negative) kept as a 32-bit unsigned number; and only (1, 0) is accepted."""
+    parts = text.split(".")
+    if parts[-1] == "":
+        parts.pop()
+    if len(parts) != 2:
+        return "The version attribute should be in the form 'x.y'"
+    numbers = []
+    for part in parts:
+        if part == "":
+            return "One of the fields of the version attribute is blank"
+        read = _STRTOL.match(part)
+        if read is None:
+            return "Version attribute is not an integer"
+        if read.end() != len(part):
+            return "Extra characters after the version number"
+        value = max(min(int(read.group().lstrip(" \t\n\v\f\r")), _LONG - 1), -_LONG)
+        if value < 0:
+            return "Version number must be positive"
+        numbers.append(value % 2 ** 32)
+    if numbers != [1, 0]:
+        return "Invalid 'version' specified; only version 1.0 is currently supported"
+    return None
 
 
 def _geometries(ctx, links) -> None:

@@ -32,6 +32,9 @@ BATTERY = {
     "mimic-joint-missing": lambda d: _example(3, d, '<child\n      link="end_arm_link" />',
                                               '<child\n      link="end_arm_link" />\n'
                                               '    <mimic  joint="midle_arm_joint" />'),
+    "mimic-joint-not-movable": lambda d: _example(3, d, '<child\n      link="end_arm_link" />',
+                                                  '<child\n      link="end_arm_link" />\n'
+                                                  '    <mimic  joint="world_joint" />'),
     "axis-zero": lambda d: _example(1, d, 'xyz="0 1 0"', 'xyz="0  0 0"'),
     "axis-not-unit": lambda d: _example(1, d, 'xyz="0 1 0"', 'xyz="0 10 0"'),
     "limit-missing": lambda d: _arm_limit(d, "<!-- limit deleted -->"),
@@ -53,6 +56,7 @@ BATTERY = {
 }
 WHERE = {
     "mimic-joint-missing": '<mimic  joint="midle_arm_joint"',
+    "mimic-joint-not-movable": '<mimic  joint="world_joint"',
     "axis-zero": 'xyz="0  0 0"',
     "axis-not-unit": 'xyz="0 10 0"',
     "limit-missing": 'name="middle_arm_joint"',

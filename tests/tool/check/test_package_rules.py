@@ -180,3 +180,25 @@ def test_odd_manifests_do_not_raise(text, tmp_path):
     report = check(package, stability=False)
     report.format()
     assert report.status in (0, 1)
+
+
+def test_a_wrong_package_name_hides_no_missing_mesh(tmp_path):
+    # A folder named otherwise than the package, its meshes gone: the name is one finding,
+    # and each missing file is one more, looked for in the folder given.
+    package = _renamed(tmp_path)
+    for mesh in (package / "meshes").iterdir():
+        mesh.unlink()
+    report = check(package, stability=False)
+    assert [f.rule for f in report.findings if f.rule == "package-name-mismatch"] == [
+        "package-name-mismatch"]
+    missing = [f for f in report.findings if f.rule == "mesh-not-found"]
+    assert len(missing) == len(list((EXAMPLES / "example_1" / "meshes").iterdir())) == 5
+    assert all("package-name-mismatch" in f.message and "my_robot" in f.message
+               for f in missing)
+
+
+def test_the_meshes_behind_a_wrong_package_name_are_still_read(tmp_path):
+    package = _renamed(tmp_path)
+    (package / "meshes" / "base_link.STL").write_bytes(b"\0" * 84)   # a header, no triangle
+    rules = check(package, stability=False).rules()
+    assert {"package-name-mismatch", "mesh-empty"} <= rules, rules
