@@ -25,6 +25,7 @@ from lxml import etree
 
 from .actuators import Actuator, add_actuators
 from .loader import load_package, lowest_collision_point
+from .mesh_formats import converted_from
 from .package import LoadError, Package, as_package
 from .ros_control import read_joint_limits
 
@@ -49,6 +50,7 @@ class Conversion:
     actuators: list[Actuator] = field(default_factory=list)
     skipped: list[str] = field(default_factory=list)
     meshes: dict[str, str] = field(default_factory=dict)   # asset path -> package path
+    converted: list[str] = field(default_factory=list)     # assets converted to STL
     excluded: list[tuple[str, str]] = field(default_factory=list)
     repairs: list = field(default_factory=list)    # the findings convert repaired
 
@@ -92,20 +94,25 @@ def convert(source: str | os.PathLike | Package, folder: str | os.PathLike, *,
                         repairs=list(repairs))
 
     copies: dict[Path, str] = {}
+    converted = dict(spec.assets)   # meshes the loader converted in memory (mesh_formats)
     for mesh in spec.meshes:
         source = Path(mesh.file)
         if source not in copies:
             copies[source] = _asset_name(package.root, source, set(copies.values()))
         mesh.file = copies[source]
     spec.meshdir = ASSETS
-    result.meshes = {asset: source.relative_to(package.root).as_posix()
-                     for source, asset in copies.items()}
+    result.meshes = {asset: (converted_from(str(source)) if str(source) in converted else source)
+                     .relative_to(package.root).as_posix() for source, asset in copies.items()}
+    result.converted = [asset for source, asset in copies.items() if str(source) in converted]
 
     folder.mkdir(parents=True, exist_ok=True)
     for source, asset in copies.items():
         target = folder / ASSETS / asset
         target.parent.mkdir(parents=True, exist_ok=True)
-        shutil.copyfile(source, target)
+        if str(source) in converted:
+            target.write_bytes(converted[str(source)])
+        else:
+            shutil.copyfile(source, target)
         result.files.append(target)
     spec.modelfiledir = str(folder.resolve())   # to_xml compiles: it must find the copies
     robot_file = folder / f"{result.name}.xml"
@@ -193,7 +200,9 @@ def readme(result: Conversion, package: Package) -> str:
            f"| `{name}.xml` | the robot: bodies, joints, meshes and actuators |",
            f"| `{SCENE}` | includes `{name}.xml` and adds a floor, a light and a sky: "
            "open this one |",
-           *([f"| `{ASSETS}/` | the mesh files, copied unchanged from the package |"]
+           *([f"| `{ASSETS}/` | the mesh files, copied unchanged from the package" +
+              (", but for those converted to binary STL (see Meshes below)"
+               if result.converted else "") + " |"]
              if result.meshes else []),
            f"| `{README}` | this file |", "",
            "## Use", "", "```bash", f"python -m mujoco.viewer --mjcf={SCENE}", "```", "",
@@ -211,7 +220,9 @@ def readme(result: Conversion, package: Package) -> str:
                "needs); MuJoCo's world body stands for that link." if result.fixed else
                "free (a free joint), because the URDF has no `world` link: in Gazebo it would "
                "fall free, too. It is lifted to rest on the floor at z = 0."),
-           "- **Meshes**: " + (", ".join(f"`{ASSETS}/{a}` from `{s}`"
+           "- **Meshes**: " + (", ".join(f"`{ASSETS}/{a}` " + (
+                                            "converted to binary STL from" if a in
+                                            result.converted else "from") + f" `{s}`"
                                         for a, s in result.meshes.items()) + ". "
                                if result.meshes else "none; the shapes are URDF primitives. ") +
            "Each link keeps its visual shape (geom group 1, no contacts) and its collision "

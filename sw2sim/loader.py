@@ -1,10 +1,11 @@
 """Load a package in the SolidWorks-to-URDF exporter's layout as a MuJoCo model specification.
 
 MuJoCo reads URDF, but an exported package does not load as it is: mesh paths use
-`package://`, visual meshes are thrown away by default, a base welded to the world
-collides with its own wheels, and there is nothing to stand on or look through.
-`load_package` fixes exactly those things and nothing else, and says what is wrong
-(with the file and line) when the package itself is broken.
+`package://`, visual meshes are thrown away by default, meshes made for RViz may be
+COLLADA, which MuJoCo cannot decode, a base welded to the world collides with its own
+wheels, and there is nothing to stand on or look through. `load_package` fixes exactly
+those things and nothing else, and says what is wrong (with the file and line) when the
+package itself is broken.
 """
 
 from __future__ import annotations
@@ -20,6 +21,8 @@ from lxml import etree
 
 import mujoco
 
+from .mesh_formats import (LFS_FIX, Unconvertible, converted_name, lfs_pointer, stand_in,
+                           stl_bytes)
 from .package import LoadError, Package, as_package, find_package, resolve_mesh
 
 
@@ -41,6 +44,9 @@ def load_package(source: str | os.PathLike | Package, *, fixed_base: bool = True
     """A MuJoCo model specification of an exported package, ready to compile.
 
     - `package://` mesh paths resolve to files inside the package;
+    - a mesh MuJoCo cannot decode (COLLADA, PLY, glTF) is read from the same-named STL, OBJ
+      or MSH beside it, else converted to STL in memory (`sw2sim.mesh_formats.stand_in`);
+      a Git LFS pointer where a mesh should be is a LoadError that says `git lfs pull`;
     - visual meshes are kept (collision geoms: group 0; visual geoms: group 1, no contacts);
     - a base fixed to the world does not collide with the links it carries directly
       (their meshes overlap at the axles and would lock the joints);
@@ -58,11 +64,13 @@ def load_package(source: str | os.PathLike | Package, *, fixed_base: bool = True
     urdf = package.urdf
     robot = copy.deepcopy(package.robot)
 
+    assets: dict[str, bytes] = {}    # meshes converted in memory, by the name they go by
     for mesh in robot.iter("mesh"):
         filename = mesh.get("filename")
         if not filename:
             raise LoadError(urdf, "<mesh> without a filename", mesh.sourceline)
-        mesh.set("filename", str(package.resolve_mesh(filename, mesh.sourceline)))
+        path = package.resolve_mesh(filename, mesh.sourceline)
+        mesh.set("filename", _decodable(package, path, mesh.sourceline, assets))
 
     for old in robot.findall("mujoco"):
         robot.remove(old)
@@ -73,7 +81,7 @@ def load_package(source: str | os.PathLike | Package, *, fixed_base: bool = True
     xml = etree.tostring(robot, encoding="unicode")
     try:
         with _c_output_silenced():
-            spec = mujoco.MjSpec.from_string(xml)
+            spec = mujoco.MjSpec.from_string(xml, assets=assets or None)
     except ValueError as exc:
         raise LoadError(urdf, f"MuJoCo cannot read this URDF: {exc}") from None
     spec.modelname = robot.get("name") or package.name
@@ -86,6 +94,28 @@ def load_package(source: str | os.PathLike | Package, *, fixed_base: bool = True
         root_body.add_freejoint()
     _add_scene(spec, urdf, root_body, lift=not fixed_base, dress=scene)
     return spec
+
+
+def _decodable(package: Package, path: Path, line: int | None, assets: dict[str, bytes]) -> str:
+    """The file MuJoCo reads for the mesh file `path`: itself, the readable file of the same
+    name beside it, or a binary STL converted from it, put in `assets` under the name
+    returned. A Git LFS pointer, or a file nothing can read, is a LoadError."""
+    shown = path.relative_to(package.root).as_posix()
+    if lfs_pointer(path):
+        raise LoadError(package.urdf, f"the mesh {shown} is a Git LFS pointer, a small text "
+                        "file in place of the mesh", line, fix=LFS_FIX)
+    found = stand_in(path)
+    if found is not None:
+        return str(found)
+    name = converted_name(path)
+    if name not in assets:
+        try:
+            assets[name] = stl_bytes(path)
+        except Unconvertible as exc:
+            raise LoadError(package.urdf, f"MuJoCo cannot read the mesh {shown} (it reads "
+                            f".stl, .obj and .msh), and it cannot be converted: {exc}", line,
+                            fix="save it as binary STL beside it, with the same name") from None
+    return name
 
 
 @contextmanager

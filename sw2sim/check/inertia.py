@@ -11,9 +11,13 @@ no material has) is a warning.
 
 from __future__ import annotations
 
+import shlex
+from pathlib import Path
+
 import numpy as np
 
 from ..xmlsafe import source_line
+from .context import display
 from .findings import ERROR, WARNING, rule
 from .geometry import (Inertial, Tree, closed_solid, inertial_of, link_geometry,
                        origin_matrix)
@@ -38,6 +42,26 @@ ROUNDING = 1e-3
 # 22,600 kg/m^3. Judged on a mesh's convex hull, which holds more than the part, a density
 # still reads low for a hollow part, but not below 100 unless its walls are foil.
 DENSITY_RANGE = (100.0, 25_000.0)
+
+# A link with no visual or collision geometry is a frame (a tool point, a sensor mount):
+# nothing measures its shape, so a tensor MuJoCo refuses there can only be a placeholder
+# (ixx = iyy = 1, izz = 100 is one seen in exported packages). Its mass is kept, as it may
+# be real (a tool's weight typed in) and weighs on the joints; the tensor becomes that of a
+# solid sphere of that mass at this density, MuJoCo's own default for geometry without a
+# mass: positive, A = B = C, and about 3e-5 kg m^2 for 100 g, too small to change how an
+# arm turns. balanceinertia would keep the placeholder's size instead, and the tool point
+# would turn like a flywheel. A massless frame gets the zero tensor, as a point has; MuJoCo
+# accepts it where another link of the body brings the inertia.
+FRAME_DENSITY = 1000.0
+# The density the fix of a massless moving link proposes: aluminium 6061, the most common
+# material of machined robot parts; the fix names steel's and ABS's beside it.
+PROPOSED_DENSITY = 2700
+
+FRAME_FIX = ("give the frame a tensor a body can have: the inertia of what it carries (a "
+             "tool's, from SolidWorks' Mass Properties), or for a bare frame the same small "
+             "value for ixx, iyy and izz and zero for the products, as convert does")
+FRAME = (f"its mass is kept, and the tensor becomes that of a solid sphere of that mass at "
+         f"{FRAME_DENSITY:g} kg/m^3 (MuJoCo's default density), or zero for a massless frame.")
 
 RECOMPUTE = ("only when asked: with `--density KG_PER_M3` (your material's density), the link's "
              "mass, centre of mass and inertia are computed from its collision mesh, or its "
@@ -97,7 +121,10 @@ rule("inertia-not-positive-definite", ERROR, "inertia", "An inertia tensor is no
            "zero) on a link that moves.",
      fix="Copy the tensor again from SolidWorks' Mass Properties, taken at the centre of "
          "mass and aligned with the output coordinate system (the Lxx ... Lzz values).",
-     seen_in=("mujoco#759", "mujoco#2491"))
+     seen_in=("mujoco#759", "mujoco#2491"),
+     repair=f"a link with no visual or collision geometry (a tool or sensor frame) has only a "
+            f"placeholder tensor: {FRAME} A moving link whose six terms are all zero is "
+            f"repaired {RECOMPUTE}")
 rule("inertia-triangle", ERROR, "inertia", "The principal moments break A + B >= C",
      symptom="MuJoCo stops with \"inertia must satisfy A + B >= C; use 'balanceinertia' to "
              "fix\".",
@@ -109,8 +136,9 @@ rule("inertia-triangle", ERROR, "inertia", "The principal moments break A + B >=
          "moments, but the link then turns with the wrong inertia.",
      seen_in=("mujoco#375",),
      repair=f"a shortfall of at most {ROUNDING:.1%} of C is rounding: the two smaller moments are "
-            "raised together until A + B = C, the principal axes kept. Larger ones are not "
-            "repaired.")
+            f"raised together until A + B = C, the principal axes kept. Larger ones are "
+            f"repaired only on a link with no visual or collision geometry (a tool or sensor "
+            f"frame), whose tensor can only be a placeholder: {FRAME}")
 rule("com-outside-geometry", WARNING, "inertia", "The centre of mass lies outside the link",
      symptom="The link leans, tips or swings as if weighted on one side; the model falls "
              "over where the real machine stands.",
@@ -150,7 +178,8 @@ def check(ctx) -> None:
                 ctx.add("mass-not-positive", f'link "{name}" moves (joint '
                         f'"{tree.joint_name(name)}") but has no <inertial> and no collision '
                         "geometry for MuJoCo to compute a mass from",
-                        line=source_line(link), repair=_recompute(ctx, link))
+                        line=source_line(link), repair=_recompute(ctx, link),
+                        fix=_by_density(ctx, link))
             elif tree.moves(name):
                 ctx.add("inertial-missing", f'link "{name}" moves (joint '
                         f'"{tree.joint_name(name)}") but has no <inertial>' + _fallback(link),
@@ -233,13 +262,15 @@ def _mass(ctx, tree: Tree, name: str, inertial: Inertial, alone: bool) -> bool:
     line = source_line(inertial.element.find("mass"), "value")
     if mass < 0:
         ctx.add("mass-not-positive", f'link "{name}" has a negative mass, {mass:g} kg',
-                line=line, repair=_recompute(ctx, ctx.links[name]))
+                line=line, repair=_recompute(ctx, ctx.links[name]),
+                fix=_by_density(ctx, ctx.links[name]))
         return False
     if mass <= MJMINVAL:
         if alone:
             ctx.add("mass-not-positive", f'link "{name}" moves (joint '
                     f'"{tree.joint_name(name)}") but its mass is {mass:g} kg, and no link '
-                    "fixed to it has mass", line=line, repair=_recompute(ctx, ctx.links[name]))
+                    "fixed to it has mass", line=line, repair=_recompute(ctx, ctx.links[name]),
+                    fix=_by_density(ctx, ctx.links[name]))
         return False
     if mass < TINY_MASS and tree.body(name) is not None:
         ctx.add("mass-tiny", f'link "{name}" moves but weighs {mass:.3g} kg, less than a '
@@ -261,15 +292,18 @@ def _tensor(ctx, link, inertial: Inertial, alone: bool) -> None:
         if alone:
             ctx.add("inertia-not-positive-definite", f'link "{name}" moves but all six terms '
                     "of its inertia are zero, and no link fixed to it has inertia", line=line,
-                    fix="write the part's inertia tensor from SolidWorks' Mass Properties; "
-                        "for a small part, that of a solid box of its size will do",
+                    fix=_by_density(ctx, link) or
+                    "write the part's inertia tensor from SolidWorks' Mass Properties; "
+                    "for a small part, that of a solid box of its size will do",
                     repair=_recompute(ctx, link))
         return
     a, b, c = (float(m) for m in np.linalg.eigvalsh(tensor))
     shown = f"{a:.4g}, {b:.4g}, {c:.4g} kg m^2"
+    frame = _frame_tensor(link, inertial)
     if a <= MJMINVAL:
         ctx.add("inertia-not-positive-definite", f'link "{name}": the principal moments of '
-                f"its inertia are {shown}; all three must be positive", line=line)
+                f"its inertia are {shown}; all three must be positive", line=line,
+                repair=frame, fix=FRAME_FIX if frame else None)
     elif a + b < c * (1 - TRIANGLE_SLACK):
         short = c - (a + b)
         fixed = None
@@ -280,9 +314,65 @@ def _tensor(ctx, link, inertial: Inertial, alone: bool) -> None:
             fixed = repair(f'the moments of link "{name}" are raised by {short / 2:.3g} kg m^2 '
                            f"each, {short / c:.2g} of C, as a shortfall that small is rounding",
                            (element, write_tensor(written)))
+        else:
+            fixed = frame
         ctx.add("inertia-triangle", f'link "{name}": the principal moments of its inertia are '
                 f"{shown}, and {a:.4g} + {b:.4g} = {a + b:.4g} is less than {c:.4g}", line=line,
-                repair=fixed)
+                repair=fixed, fix=FRAME_FIX if frame and fixed is frame else None)
+
+
+def _frame_tensor(link, inertial: Inertial):
+    """For a link with no visual or collision geometry, whose tensor MuJoCo refuses: the
+    repair that gives it a valid one, a sphere's of its mass (see FRAME_DENSITY). None for a
+    link with geometry, whose tensor belongs to a real part."""
+    if link.find("visual") is not None or link.find("collision") is not None:
+        return None
+    mass, element = inertial.mass, inertial.element.find("inertia")
+    if mass is None or mass < 0 or element is None:
+        return None   # inertial-incomplete or mass-not-positive says so
+    name = link.get("name", "")
+    if mass <= MJMINVAL:
+        return repair(f'link "{name}" has no visual or collision geometry and no mass, so its '
+                      "tensor is a placeholder: it becomes zero, a massless frame's",
+                      (element, write_tensor(np.zeros((3, 3)))))
+    radius = (3 * mass / (4 * np.pi * FRAME_DENSITY)) ** (1 / 3)
+    moment = 0.4 * mass * radius ** 2
+    return repair(f'link "{name}" has no visual or collision geometry, so its tensor is a '
+                  f"placeholder: its mass, {mass:.4g} kg, is kept, and the tensor becomes that "
+                  f"of a solid sphere of that mass at {FRAME_DENSITY:g} kg/m^3 (radius "
+                  f"{radius * 1000:.3g} mm), {moment:.3g} kg m^2 about every axis",
+                  (element, write_tensor(np.eye(3) * moment)))
+
+
+def _by_density(ctx, link) -> str | None:
+    """The fix for a link whose mass or inertia convert can compute from its geometry with
+    --density: the exact command that converts the package so, with the path the user gave.
+    None when the link has no geometry to compute from, or the command would change nothing
+    (--density given already, or --strict)."""
+    if ctx.options.density is not None or ctx.options.strict:
+        return None
+    if not any(link_geometry(ctx, link, kind) for kind in ("collision", "visual")):
+        return None
+    return (f"`{convert_command(ctx)}` converts the package with the mass, centre of mass and "
+            "inertia of every such link computed from its meshes as a solid of aluminium 6061 "
+            f"({PROPOSED_DENSITY} kg/m^3; steel: 7850, ABS: 1040: give your material's); or "
+            "give the link its real mass (SolidWorks: Mass Properties) and export again")
+
+
+def convert_command(ctx, density: float = PROPOSED_DENSITY) -> str:
+    """`sw2sim convert PKG -o PKG_mujoco --density ...` for the package as the user named it
+    (a folder, a .urdf or a .zip), ready to paste into a shell."""
+    given = Path(ctx.path)
+    if given.suffix.lower() == ".zip":
+        base = given.with_suffix("")
+    else:
+        base = given if given.is_dir() else Path(display(ctx.package.root))
+    if base.name in ("", ".", ".."):   # the package is the working folder: write beside it
+        base = base / ".." / base.resolve().name
+    words = ["sw2sim", "convert", str(given), "-o", f"{base}_mujoco"]
+    if ctx.package.other_urdfs:
+        words += ["--urdf", (ctx.package.expanded_from or ctx.package.urdf).name]
+    return shlex.join(words + ["--density", f"{density:g}"])
 
 
 def _recompute(ctx, link):

@@ -17,6 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..mesh_formats import LFS_FIX, beside, lfs_pointer
 from ..mesh_paths import closest, matches
 from ..xmlsafe import source_line
 from .context import display
@@ -69,7 +70,23 @@ rule("mesh-format", ERROR, "mesh", "MuJoCo cannot read this mesh format",
      cause="MuJoCo reads STL, OBJ and its own MSH files only; COLLADA (.dae), PLY, glTF and "
            "the like, which RViz and Gazebo accept, are not among them.",
      fix="Convert the mesh to binary STL or OBJ (MeshLab, Blender, or "
-         "`trimesh.load(path).export(\"part.stl\")`) and point the URDF at the new file.")
+         "`trimesh.load(path).export(\"part.stl\")`) and point the URDF at the new file.",
+     repair="the mesh is read from the file of the same name beside it in a format MuJoCo "
+            "reads (`base.STL` for `base.dae`, any case of the extension), STL first, then "
+            "OBJ, then MSH. Where there is none, the mesh is converted to binary STL with "
+            "trimesh (pycollada reads COLLADA), in metres as a COLLADA file's `<unit>` says; "
+            "the model folder holds the converted file.")
+rule("mesh-lfs-pointer", ERROR, "mesh", "The mesh file is a Git LFS pointer, not the mesh",
+     symptom="MuJoCo stops with \"number of faces should be between 1 and 200000 in STL file "
+             "...; perhaps this is an ASCII file?\" (or \"at least 4 vertices required\" for "
+             "an OBJ); the file is about 130 bytes of text starting `version "
+             "https://git-lfs.github.com/spec/v1`.",
+     cause="The repository keeps its meshes in Git LFS (its .gitattributes names them with "
+           "`filter=lfs`), and the copy at hand was cloned without Git LFS installed, or "
+           "downloaded as an archive without its LFS files: each mesh is a pointer that "
+           "names the real file on the server.",
+     fix="Install Git LFS, run `git lfs install` once, then `git lfs pull` in the "
+         "repository: the pointers are replaced by the meshes.")
 rule("mesh-ascii-stl", ERROR, "mesh", "The STL file is text (ASCII), not binary",
      symptom="MuJoCo stops with \"number of faces should be between 1 and 200000 in STL "
              "file ...; perhaps this is an ASCII file?\".",
@@ -267,10 +284,14 @@ def _file(ctx, path: Path, meshes) -> bool:
     named = f'{_role(first)}: {display(path)}'
     also = _also(ctx, meshes)
     suffix = path.suffix.lower()
+    if lfs_pointer(path):
+        ctx.add("mesh-lfs-pointer", f"{named} is a Git LFS pointer ({path.stat().st_size} "
+                f"bytes of text), not the mesh{also}", line=line, fix=LFS_FIX)
+        return False
     if suffix not in MUJOCO_FORMATS:
         kind = f'a "{suffix}" file' if suffix else "a file without an extension"
         ctx.add("mesh-format", f"{named} is {kind}; MuJoCo reads .stl, .obj and .msh "
-                f"only{also}", line=line)
+                f"only{also}", line=line, repair=_format_repair(ctx, path, meshes))
     if suffix == ".msh":
         return False  # MuJoCo's own format: nothing here reads it
     if suffix == ".stl":
@@ -300,6 +321,22 @@ def _file(ctx, path: Path, meshes) -> bool:
         ctx.add("mesh-flat", f"{named} {flat}{also}", line=line)
         return False
     return True
+
+
+def _format_repair(ctx, path: Path, meshes):
+    """What convert does about a mesh MuJoCo cannot decode (as `sw2sim.load_package` does
+    it, see sw2sim.mesh_formats): read the readable file of the same name beside it, or else
+    convert it when it can be read at all."""
+    root = ctx.package.root
+    other = beside(path)
+    if other is not None:
+        return repair(f"the mesh is read from {other.relative_to(root).as_posix()}, the file "
+                      f"of the same name beside {path.name} in a format MuJoCo reads")
+    if any(_scale_ok(m) and ctx.mesh(m) is not None for m in meshes):
+        return repair(f"{path.relative_to(root).as_posix()} is converted to binary STL with "
+                      "trimesh (in metres) and the model reads that; "
+                      "there is no readable file of the same name beside it")
+    return None
 
 
 def _scale_ok(mesh) -> bool:

@@ -88,11 +88,12 @@ def _binary_stl(path: Path) -> Mesh | None:
 
 def _with_trimesh(path: Path) -> Mesh | None:
     import trimesh
+    from ..mesh_formats import in_metres   # a COLLADA file's <unit>, as MuJoCo gets it
     try:
         loaded = trimesh.load(str(path), force="mesh", process=False)
     except Exception:  # noqa: BLE001  (any reader failure means "unreadable"; meshes.check says so)
         return None
-    if not isinstance(loaded, trimesh.Trimesh):
+    if not isinstance(loaded, trimesh.Trimesh) or not in_metres(loaded):
         return None
     return Mesh(loaded.vertices, loaded.faces)
 

@@ -52,6 +52,13 @@ def _outside(folder: Path) -> Path:
     return package
 
 
+# A Git LFS pointer as a clone without Git LFS leaves it in place of the mesh (git-lfs's
+# docs/spec.md gives this example).
+LFS_POINTER = (b"version https://git-lfs.github.com/spec/v1\n"
+               b"oid sha256:4d7a214614ab2935c943f9e0ff69d22eadbb8f32b1258daaa5e2ca24d17e2393\n"
+               b"size 12345\n")
+
+
 def _collada(folder: Path) -> Path:
     package = copy_example(1, folder)
     trimesh.load(package / "meshes" / "base_link.STL").export(package / "meshes" / "base_link.dae")
@@ -100,6 +107,7 @@ BATTERY = {
     "mesh-too-many-faces": lambda d: _base_stl(d, lambda old: _repeated(old, 130)),
     "mesh-units": lambda d: _base_stl(d, _in_millimetres),
     "mesh-heavy-collision": _heavy_wheel,
+    "mesh-lfs-pointer": lambda d: _base_stl(d, LFS_POINTER),
 }
 WHERE = {
     "mesh-no-filename": 'filename=""',
@@ -113,6 +121,7 @@ WHERE = {
     "mesh-too-many-faces": STL,
     "mesh-units": STL,
     "mesh-heavy-collision": "meshes/./front_left_wheel.STL",
+    "mesh-lfs-pointer": STL,
 }
 
 
