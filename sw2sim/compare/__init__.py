@@ -11,8 +11,12 @@ pair is compared within the tolerances of `tolerances`, which says why they are 
 they are (`differences`). Each difference is one line naming the joint or link, the two
 values, by how much they differ, and what in SolidWorks usually causes it (`causes`):
 a frame on the wrong face, an axis the other way, a missing material, millimetres, the
-exporter's empty limits, a missing link and the rest. Status 0: the export matches; 1:
-it differs; 2: a package cannot be read (the message names the file).
+exporter's empty limits, a missing link, a mesh with no triangles, a unit slip, an
+inertia about the link's origin and the rest. Two trees that are not of one robot are
+not compared at all (`resemblance`): the message says the package looks like another
+lesson's, and names the lesson's package it resembles most. Status 0: the export
+matches; 1: it differs; 2: nothing could be compared (a package cannot be read, and the
+message names the file; or it looks like another lesson's package).
 """
 
 from __future__ import annotations
@@ -24,7 +28,8 @@ from dataclasses import asdict, dataclass, field
 from . import tolerances
 from .differences import Comparer, Difference
 from .match import match
-from .model import CompareError, read_model
+from .model import CompareError, read_model, shown
+from .resemblance import another_lesson
 
 __all__ = ["compare", "Comparison", "Difference", "CompareError"]
 
@@ -38,6 +43,7 @@ class Comparison:
     joints: dict[str, str] = field(default_factory=dict)   # reference joint -> yours
     counts: tuple[int, int] = (0, 0)                        # the reference's links, joints
     error: str | None = None
+    resembles: str | None = None   # the lesson's package it resembles, when it is another's
 
     @property
     def status(self) -> int:
@@ -62,6 +68,7 @@ class Comparison:
     def to_json(self) -> str:
         return json.dumps({"mine": self.mine, "reference": self.reference,
                            "status": self.status, "error": self.error,
+                           "resembles": self.resembles,
                            "differences": [dict(asdict(d), text=d.text) for d in self.differences],
                            "matched": {"links": self.links, "joints": self.joints},
                            "tolerances": tolerances.as_dict()}, indent=2)
@@ -79,6 +86,11 @@ def compare(mine: str | os.PathLike, reference: str | os.PathLike, *,
         result.error = str(exc)
         return result
     found = match(ref_model, mine_model)
+    foreign = another_lesson(ref_model, mine_model, found, result.mine, result.reference)
+    if foreign:
+        result.error, lesson = foreign
+        result.resembles = shown(lesson.folder) if lesson else None
+        return result
     result.differences = Comparer(ref_model, mine_model, found).run()
     result.links, result.joints = found.links, found.joints
     result.counts = (len(ref_model.links), len(ref_model.joints))

@@ -12,6 +12,7 @@ import math
 
 import numpy as np
 
+from . import slips
 from . import tolerances as tol
 
 # Length units a student may have used where URDF wants metres, by their factor.
@@ -71,13 +72,8 @@ def close(value: float, target: float) -> bool:
 # -- joints ------------------------------------------------------------------------------
 def origin(d, off_mine, off_ref, thicknesses, part_moved) -> tuple[str, str, str]:
     """A joint origin `d` away from the reference's; `thicknesses` are (link, size of its
-    mesh along each axis of the model); `part_moved` whether the part moved with it."""
-    units = unit_factor(off_mine, off_ref)
-    if units:
-        return ("origin-units", f"{units[0]:.4g} times the reference's: {units[1]}",
-                f"the origin is in {units[1]}: URDF wants metres, and the exporter writes "
-                "what Configure Joint Properties holds; type the origin in metres, or let "
-                "the exporter read it from the Reference Coordinate System again")
+    mesh along each axis of the model); `part_moved` whether the part moved with it. An
+    origin in another unit is recognised before (`origin_units`)."""
     big = [i for i in range(3) if abs(d[i]) > tol.LENGTH]
     note = "" if part_moved is None else (
         ". The part moved with it: the mates place the part elsewhere as well" if part_moved
@@ -165,29 +161,44 @@ def joint_type(mine: str, ref: str) -> str:
             f"{'line of motion' if ref == 'prismatic' else 'hinge line'}")
 
 
+def origin_units(found: slips.Slip, what: str) -> tuple[str, str, str]:
+    """An origin's xyz or rpy typed in another unit (`what`: "xyz" or "rpy")."""
+    if what == "xyz":
+        return ("origin-units", found.by, f"{found.example()} URDF wants metres, and the "
+                "exporter writes what Configure Joint Properties holds: type the origin in "
+                "metres, or let the exporter read it from the Reference Coordinate System "
+                "again")
+    converted = (f" ({num(found.mine)} degrees is {math.radians(found.mine):.4f} rad)"
+                 if found.unit == "degrees" else "")
+    return ("rpy-units", found.by, f"{found.example()} URDF wants the origin's roll, pitch "
+            f"and yaw in radians{converted}: let the exporter read them from the Reference "
+            "Coordinate System again, or type them in radians")
+
+
 def limit(field: str, mine: float, ref: float, kind: str) -> tuple[str, str, str]:
     """One limit value that differs."""
     ratio = mine / ref if ref else math.inf
     if mine == 0:
         return ("limit-empty", "not entered",
                 f"0 is the exporter's default: enter the {field} in Configure Joint Properties")
+    slides = kind == "prismatic"
+    quantity = {"effort": "effort", "velocity": "speed" if slides else "velocity"}.get(
+        field, "length" if slides else "angle")
+    within = tol.LENGTH if quantity == "length" else tol.ANGLE if quantity == "angle" else \
+        tol.EFFORT_VELOCITY * abs(ref)
+    found = slips.slip(mine, ref, quantity, within)
+    if found:
+        wanted = slips.wanted(quantity, kind)
+        converted = (f" ({num(mine)} degrees is {math.radians(mine):.4f} rad)"
+                     if found.unit == "degrees" else "")
+        return ("limit-units", found.by, f"{found.example()} URDF wants {wanted}, and the "
+                f"exporter writes what Configure Joint Properties holds{converted}: enter the "
+                f"{field} limit in {wanted}")
     if field in ("lower", "upper"):
         by = f"{mine - ref:+.4g} {'m' if kind == 'prismatic' else 'rad'}"
-        if kind == "revolute" and abs(ratio / math.degrees(1) - 1) <= tol.UNIT_RATIO:
-            return ("limit-units", f"{ratio:.3g} times: degrees",
-                    f"the limit is in degrees: URDF wants radians and the exporter writes what "
-                    f"you type ({num(mine)} degrees is {math.radians(mine):.4f} rad)")
-        if kind == "prismatic" and abs(ratio / 1000 - 1) <= tol.UNIT_RATIO:
-            return ("limit-units", "1000 times: millimetres",
-                    "the limit is in millimetres: URDF wants metres for a prismatic joint")
         return ("limit", by, "the joint's range differs from the lesson's: enter the range "
                 "the drawing gives (its end stops) in Configure Joint Properties")
     by = f"{ratio:.3g} times the reference's"
-    if field == "velocity" and abs(ratio / (30 / math.pi) - 1) <= tol.UNIT_RATIO:
-        return ("limit-units", f"{by}: revolutions per minute",
-                "the velocity is in revolutions per minute: URDF wants rad/s (rpm * 2 pi / 60)")
-    if field == "effort" and abs(ratio / 1000 - 1) <= tol.UNIT_RATIO:
-        return ("limit-units", f"{by}: N*mm", "the effort is in N*mm: URDF wants N*m (or N)")
     what = "motor's largest torque or force" if field == "effort" else "joint's top speed"
     return ("limit", by, f"the {what} differs from the lesson's: enter the lesson's value in "
             "Configure Joint Properties")
@@ -248,6 +259,35 @@ def moments(mine, ref) -> tuple[str, str, str]:
     return ("inertia", change, "the mass is spread differently: a dimension or feature of "
             "the part differs, or a part of the link sits elsewhere (Configure Link "
             "Properties shows SolidWorks' own numbers: check the part, not the numbers)")
+
+
+ABOUT_ORIGIN = ("the inertia is taken about the joint's frame (the link's origin) instead of "
+                "the centre of mass: URDF's <inertia> is about the centre of mass, and so is "
+                "the exporter's. In SolidWorks' Mass Properties the moments \"taken at the "
+                "center of mass\" (Lxx, Lxy, ...) are the ones; those \"taken at the output "
+                "coordinate system\" (Ixx, Ixy, ...) are not. Type those, or let the exporter "
+                "compute the link's inertia again")
+
+
+def about_origin_by(mass: float, centre) -> str:
+    """How an inertia about the link's origin differs: by the parallel-axis term."""
+    return (f"the reference's plus m(|d|^2*1 - d*d^T) for m = {num(mass)} kg and the centre of "
+            f"mass d = {vec(np.round(centre, 6))} m from the origin")
+
+
+def mesh_fault(fault) -> str:
+    """The cause of a link mesh with no triangles, or with no volume."""
+    if fault.empty:
+        return ("SolidWorks wrote an STL with no triangles: the link's part was hidden or "
+                "suppressed, or had no solid body (only surfaces or sketches), when the "
+                "exporter saved the link's mesh. Show it (unsuppress it, or make it a solid) "
+                "and export again; until then RViz and Gazebo draw nothing for the link")
+    if fault.scale_zero:
+        return ("its <mesh scale> has a 0 in it, which flattens the mesh: write the scale "
+                "the reference's mesh has (1 1 1 for a mesh in metres)")
+    return ("the part exported is a surface or a sketch, not a solid: make it a solid body "
+            "(Thicken the surface, or Knit Surface with \"Try to form solid\") and export "
+            "again")
 
 
 def mesh(ext_mine, ext_ref) -> tuple[str, str, str]:

@@ -17,7 +17,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import causes
+from . import causes, inertia, slips
 from . import tolerances as tol
 from .causes import num, vec
 from .match import Matching
@@ -209,17 +209,20 @@ class Comparer:
                 cause="once the link hangs from the reference's parent, export again and "
                       "compare: the exporter measures the origin from the new parent")
         elif np.linalg.norm(placed) > tol.LENGTH and np.linalg.norm(off_m - off_r) > tol.LENGTH:
-            code, by, cause = causes.origin(off_m - off_r, off_m, off_r, self._sizes(rj),
-                                            None if top else self._part_moved(rj, mj))
+            slipped = slips.slip(mj.origin[:3, 3], rj.origin[:3, 3], "length", tol.LENGTH)
+            code, by, cause = causes.origin_units(slipped, "xyz") if slipped else \
+                causes.origin(off_m - off_r, off_m, off_r, self._sizes(rj),
+                              None if top else self._part_moved(rj, mj))
             self.add(code, subj, "origin xyz", vec(mj.origin[:3, 3]), vec(rj.origin[:3, 3]), by,
                      cause, mj.line)
         turn = rj.origin[:3, :3].T @ mj.origin[:3, :3]
         whole = (rj.origin[:3, :3] @ self.turn).T @ mj.origin[:3, :3] if top else \
             self.rot(ref, rj.child).T @ self.rot(mine, mj.child)
         if angle(turn) > tol.ANGLE and angle(whole) > tol.ANGLE:
-            by, cause = causes.rotation(turn)
-            self.add("origin-turned", subj, "origin rpy", vec(mj.rpy), vec(rj.rpy), by, cause,
-                     mj.line)
+            slipped = slips.slip(mj.rpy, rj.rpy, "angle", tol.ANGLE)
+            code, by, cause = causes.origin_units(slipped, "rpy") if slipped else \
+                ("origin-turned", *causes.rotation(turn))
+            self.add(code, subj, "origin rpy", vec(mj.rpy), vec(rj.rpy), by, cause, mj.line)
         if rj.type in MOVING and mj.type in MOVING:
             a_r = self.rot(ref, rj.child) @ rj.axis
             a_m = self.rot(mine, mj.child) @ mj.axis
@@ -303,6 +306,8 @@ class Comparer:
                 f'hangs from "{mine.above[mn].parent}" in yours, from "{parent}" in the '
                 "reference"), cause=f'in the exporter\'s link tree drag it onto "{parent}", so '
                 "that it moves with it")
+        if m.mesh_fault and not r.mesh_fault:
+            self._mesh_fault(r, m, subj)
         if r.mass is None or m.mass is None:
             if r.mass is not None:
                 self.add("inertial-missing", subj, line=line, summary=(
@@ -333,7 +338,7 @@ class Comparer:
             by += self._turned(rn, mn)
             self.add(code, subj, "centre of mass", vec(m.centre), vec(r.centre), by, cause, line)
         if not folded:
-            self._inertia(subj, tensor_m, tensor_r, line)
+            self._inertia(subj, tensor_m, tensor_r, line, m.mass, offset_m)
         if r.mesh is not None and m.mesh is not None:
             size_r = np.ptp(r.mesh.vertices @ rot_r.T, axis=0)
             size_m = np.ptp(m.mesh.vertices @ rot_m.T, axis=0)
@@ -342,19 +347,32 @@ class Comparer:
                 self.add(code, subj, "mesh size", vec(np.round(size_m, 6)) + " m",
                          vec(np.round(size_r, 6)) + " m", by, cause, line)
 
-    def _inertia(self, subj: str, tensor_m, tensor_r, line) -> None:
+    def _inertia(self, subj: str, tensor_m, tensor_r, line, mass: float, centre) -> None:
+        """`centre`: your centre of mass from the link's origin, in the model's axes."""
+        found = inertia.difference(tensor_m, tensor_r)
         moments_r, moments_m = np.linalg.eigvalsh(tensor_r), np.linalg.eigvalsh(tensor_m)
-        floor = tol.SMALL_MOMENT * max(moments_r[-1], 0.0)
-        if np.any(np.abs(moments_m - moments_r) > tol.INERTIA * np.maximum(moments_r, floor)):
+        if found and inertia.about_origin(tensor_m, tensor_r, mass, centre):
+            self.add("inertia-origin", subj, "principal moments", f"{vec(moments_m)} kg*m^2",
+                     f"{vec(moments_r)} kg*m^2", causes.about_origin_by(mass, centre),
+                     causes.ABOUT_ORIGIN, line)
+        elif found == "moments":
             code, by, cause = causes.moments(moments_m, moments_r)
             self.add(code, subj, "principal moments", f"{vec(moments_m)} kg*m^2",
                      f"{vec(moments_r)} kg*m^2", by, cause, line)
-        elif np.linalg.norm(tensor_m - tensor_r) > tol.INERTIA * np.linalg.norm(tensor_r):
+        elif found == "turned":
             share = np.linalg.norm(tensor_m - tensor_r) / np.linalg.norm(tensor_r)
             self.add("inertia-turned", subj, line=line, summary=(
                 f"the principal moments agree, the inertia tensor in the model's axes differs by "
                 f"{share:.0%}"), cause="the part is turned in the assembly: a mate orients it "
                 "differently from the reference's")
+
+    def _mesh_fault(self, r, m, subj: str) -> None:
+        fault = m.mesh_fault
+        size = "" if r.mesh is None else \
+            f"; the reference's measures {vec(np.round(np.ptp(r.mesh.vertices, axis=0), 6))} m"
+        self.add("mesh-empty" if fault.empty else "mesh-flat", subj, line=m.line,
+                 summary=f"its mesh {fault.file} {fault.why}{size}",
+                 cause=causes.mesh_fault(fault))
 
     def _mass_cause(self, rn: str, mn: str) -> tuple[str, str, str]:
         ref, mine, found = self.ref, self.mine, self.found

@@ -1,5 +1,6 @@
 """A package read for comparison: its link tree, each joint's frame, axis and limits, and
-each link's mass properties and visual mesh, with every frame's pose at rest.
+each link's mass properties and visual mesh, with every frame's pose at rest. A mesh
+with no triangles, or with no volume, is kept as the link's `mesh_fault` (`meshes`).
 
 A URDF that cannot be compared (a joint naming a missing link, links not joined into
 one tree, a number that is not one) raises CompareError naming the file and line;
@@ -18,6 +19,7 @@ from ..check.geometry import inertial_of, origin_matrix
 from ..check.trimeshes import Mesh, box, cylinder, read, sphere
 from ..check.urdf import number, vector
 from ..package import LoadError, Package, find_package
+from .meshes import MeshFault, emptiness, flatness
 
 LIMIT_FIELDS = ("lower", "upper", "effort", "velocity")
 MOVING = ("revolute", "continuous", "prismatic")
@@ -50,6 +52,7 @@ class Link:
     tensor: np.ndarray | None       # about the centre of mass, in the link's axes
     mesh: Mesh | None               # the visual geometry in the link's frame, in metres
     line: int | None
+    mesh_fault: MeshFault | None = None   # a visual mesh with no triangles or no volume
 
     @property
     def bare(self) -> bool:
@@ -200,47 +203,68 @@ def _link(model: Model, element) -> Link:
         if mass is None or centre is None or tensor is None:
             raise model.error(inertial.element, f'link "{name}": the <inertial> is incomplete '
                               f"or holds something other than numbers")
-    return Link(name, mass, centre, tensor, _visual(model.package, element), element.sourceline)
+    mesh, fault = _visual(model.package, element)
+    return Link(name, mass, centre, tensor, mesh, element.sourceline, fault)
 
 
-def _visual(package: Package, link) -> Mesh | None:
-    """The link's visual geometry as one mesh in its frame; None when there is none, or
-    some of it cannot be read (the comparison of sizes and volumes is then skipped)."""
-    vertices, faces, count = [], [], 0
+def _visual(package: Package, link) -> tuple[Mesh | None, MeshFault | None]:
+    """The link's visual geometry as one mesh in its frame, and the first of its meshes
+    that has no triangles or no volume. The mesh is None when there is none, or some of
+    it cannot be read or is faulty (the comparison of sizes and volumes is then skipped)."""
+    vertices, faces, count, fault, whole = [], [], 0, None, True
     for visual in link.findall("visual"):
         shapes = [s for s in visual.iterfind("geometry/*") if isinstance(s.tag, str)]
-        mesh = _shape(package, shapes[0]) if shapes else None
+        mesh, wrong = _shape(package, shapes[0]) if shapes else (None, None)
+        fault = fault or wrong
         pose = origin_matrix(visual)
         if mesh is None or pose is None:
-            return None
+            whole = False
+            continue
         mesh.apply_transform(pose)
         vertices.append(mesh.vertices)
         faces.append(mesh.faces + count)
         count += len(mesh.vertices)
-    return Mesh(np.vstack(vertices), np.vstack(faces)) if vertices else None
+    if not whole or not vertices:
+        return None, fault
+    return Mesh(np.vstack(vertices), np.vstack(faces)), fault
 
 
-def _shape(package: Package, shape) -> Mesh | None:
+def _inside(package: Package, file: Path) -> str:
+    """A mesh file as the package names it: meshes/part.STL."""
+    try:
+        return Path(file).relative_to(package.root).as_posix()
+    except ValueError:
+        return shown(file)
+
+
+def _shape(package: Package, shape) -> tuple[Mesh | None, MeshFault | None]:
+    """One <geometry>'s shape in metres, or None; and its fault, for a faulty mesh file."""
     if shape.tag == "mesh":
         try:
             file = package.resolve_mesh(shape.get("filename", ""))
         except LoadError:
-            return None
-        mesh = read(file)
+            return None, None
         scale = vector(shape.get("scale", "1 1 1"), 3)
-        if mesh is not None and scale is not None:
-            mesh.apply_scale(scale)
-            return mesh
-        return None
+        empty = emptiness(file)
+        if empty:
+            return None, MeshFault(_inside(package, file), empty, True)
+        mesh = read(file)
+        if mesh is None or scale is None:
+            return None, None
+        mesh.apply_scale(scale)
+        flat = flatness(mesh.vertices)
+        if flat:
+            return None, MeshFault(_inside(package, file), flat, False, not all(scale))
+        return mesh, None
     sizes = {"box": ("size", 3), "cylinder": ("radius", 1), "sphere": ("radius", 1)}
     if shape.tag not in sizes:
-        return None
+        return None, None
     values = vector(shape.get(sizes[shape.tag][0]), sizes[shape.tag][1])
     if values is None:
-        return None
+        return None, None
     if shape.tag == "box":
-        return box(values)
+        return box(values), None
     if shape.tag == "sphere":
-        return sphere(values[0])
+        return sphere(values[0]), None
     length = number(shape.get("length"))
-    return None if length is None else cylinder(values[0], length)
+    return (None if length is None else cylinder(values[0], length)), None

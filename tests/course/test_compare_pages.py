@@ -43,8 +43,9 @@ def test_the_section_compares_with_its_own_package_at_the_tools_tolerances(n):
 def test_practice_3_counts_what_the_raw_export_lacks():
     result = compare(ROOT / "examples" / "Arm_Assembly", ROOT / "examples" / "example_3")
     codes = sorted(d.code for d in result.differences)
-    assert codes == ["limits-empty", "limits-empty", "world-missing"]
+    assert codes == ["limits-empty", "limits-empty", "mesh-empty", "world-missing"]
     assert result.status == 1
-    words = {3: "Three"}
-    assert re.search(rf"{words[len(codes)]} lines: no world link, and the exporter's empty "
-                     r"limits on both joints", " ".join(compare_sections()[3].split()))
+    words = {4: "Four"}
+    assert re.search(rf"{words[len(codes)]} lines: no world link; the exporter's empty "
+                     r"limits on both joints, .*; and the end arm's mesh with no triangles",
+                     " ".join(compare_sections()[3].split()))

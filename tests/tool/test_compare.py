@@ -2,18 +2,24 @@
 
 Every reference matches itself and a copy with the faceting difference of a real
 SolidWorks export; copies altered the way students get them wrong differ, each with the
-right diagnosis on its line; unreadable input gives status 2 and names the file.
+right diagnosis on its line; unreadable input gives status 2 and names the file, and so
+does another lesson's package, naming the lesson it resembles. The mistakes include
+meshes with no triangles or no volume, numbers typed in another unit, and an inertia
+taken about the link's origin.
 """
 
 import json
 import re
 import subprocess
 import sys
+from pathlib import Path
 
+import numpy as np
 import pytest
 
 from packages import EXAMPLES, copy_example, edit, edit_re, urdf_of
 from sw2sim import cli
+from sw2sim.check.urdf import vector
 from sw2sim.compare import compare
 from sw2sim.compare.causes import FLIPPED
 
@@ -378,3 +384,255 @@ def test_the_command_has_help_with_examples(capsys):
     with pytest.raises(SystemExit):
         cli.main(["--help"])
     assert re.search(r"^\s+compare\s+\S", capsys.readouterr().out, re.M)
+
+
+# --- meshes with nothing in them ----------------------------------------------------------
+
+def with_mesh(n: int, tmp_path, link: str, data: bytes):
+    """A copy of examples/example_<n> whose mesh of `link` holds `data`."""
+    package = copy_example(n, tmp_path)
+    (package / "meshes" / f"{link}.STL").write_bytes(data)
+    return package
+
+
+@pytest.mark.parametrize("data, said", [
+    (bytes(80), "is 80 bytes long: a binary STL's header and not a single "
+                              "triangle"),
+    (bytes(84), "is a binary STL header that announces 0 triangles"),
+    (b"solid end_arm_link\nendsolid end_arm_link\n", "is a text STL without a single facet"),
+    (b"", "is empty (0 bytes)")], ids=["exporter-80-bytes", "count-0", "text", "0-bytes"])
+def test_a_mesh_with_no_triangles(tmp_path, data, said):
+    line = the_line(against(3, with_mesh(3, tmp_path, "end_arm_link", data)), "mesh-empty")
+    assert f'link "end_arm_link": its mesh meshes/end_arm_link.STL {said}' in line
+    assert "the reference's measures 0.25 0.08 0.02 m" in line
+    assert "hidden or suppressed, or had no solid body" in line and "export again" in line
+
+
+def test_the_exporters_sample_with_its_empty_mesh(tmp_path):
+    # The raw export course/practices/sample_export.py writes: its end arm's STL is the
+    # 80-byte header the exporter leaves for a part it could not mesh. (Imported here:
+    # the course's part modules load trimesh, seconds on a busy machine.)
+    from course.practices import sample_export
+    sample_export.write(tmp_path)
+    assert (tmp_path / sample_export.PACKAGE / "meshes" /
+            f"{sample_export.EMPTY_MESH}.STL").read_bytes() == bytes(80)
+    result = against(3, tmp_path / sample_export.PACKAGE)
+    empty = [d for d in result.differences if d.code == "mesh-empty"]
+    assert result.status == 1 and len(empty) == 1, result.format()
+    assert empty[0].subject == f'link "{sample_export.EMPTY_MESH}"'
+
+
+def test_an_empty_mesh_in_a_package_as_the_exporter_writes_it(tmp_path):
+    # Byte for byte the exporter's layout (CRLF, its version comment, its STL headers):
+    # one export as the reference, the same export with a wheel's STL left empty as yours.
+    sys.path.insert(0, str(Path(__file__).resolve().parent / "check"))
+    from exporter_packages import FOUR_WHEELER_NESTED, write_export   # loads trimesh: here
+    reference = write_export(FOUR_WHEELER_NESTED, tmp_path / "reference")
+    package = write_export(FOUR_WHEELER_NESTED, tmp_path / "yours")
+    wheel = FOUR_WHEELER_NESTED.links[1].name
+    (package / "meshes" / f"{wheel}.STL").write_bytes(bytes(80))
+    assert compare(reference, reference).status == 0
+    line = the_line(compare(package, reference), "mesh-empty")
+    assert f'link "{wheel}": its mesh meshes/{wheel}.STL is 80 bytes long' in line
+
+
+def flattened(axis: int | None):
+    """An edit of a binary STL file: every vertex moved onto a plane (a coordinate set
+    to 0), or with `axis` None onto a line (two coordinates set to 0)."""
+    def change(path):
+        data = bytearray(path.read_bytes())
+        count = int.from_bytes(data[80:84], "little")
+        records = np.frombuffer(bytes(data[84:]), dtype=np.dtype(
+            [("normal", "<f4", (3,)), ("points", "<f4", (3, 3)), ("attr", "<u2")]),
+            count=count).copy()
+        for gone in ([axis] if axis is not None else [1, 2]):
+            records["points"][:, :, gone] = 0
+        path.write_bytes(bytes(data[:84]) + records.tobytes())
+    return change
+
+
+@pytest.mark.parametrize("axis, said", [(2, "in one plane"), (None, "on one line")])
+def test_a_mesh_with_no_volume(tmp_path, axis, said):
+    package = copy_example(3, tmp_path)
+    flattened(axis)(package / "meshes" / "middle_arm_link.STL")
+    line = the_line(against(3, package), "mesh-flat")
+    assert f"meshes/middle_arm_link.STL has all its vertices {said}, so it encloses no volume" \
+        in line
+    assert "a surface or a sketch, not a solid" in line
+
+
+def test_a_mesh_scaled_flat(tmp_path):
+    package = altered(3, tmp_path, ('middle_arm_link.STL" />',
+                                    'middle_arm_link.STL" scale="1 1 0" />'))
+    line = the_line(against(3, package), "mesh-flat")
+    assert "<mesh scale> has a 0 in it" in line
+
+
+# --- another lesson's package ----------------------------------------------------------------
+
+@pytest.mark.parametrize("mine, reference", [(2, 4), (4, 2), (3, 5), (5, 3), (1, 3), (4, 1)])
+def test_another_lessons_package_is_not_compared(mine, reference):
+    result = compare(EXAMPLES / f"example_{mine}", EXAMPLES / f"example_{reference}")
+    assert result.status == 2 and not result.differences, result.format()
+    assert "have little in common" in result.error
+    assert "This looks like another lesson's package" in result.error
+    assert f"resembles {EXAMPLES / f'example_{mine}'} (Practice {mine}'s package) most" \
+        in result.error or f"example_{mine} (Practice {mine}'s package) most" in result.error
+    assert result.resembles.endswith(f"example_{mine}")
+
+
+@pytest.mark.parametrize("mine, reference", [(2, 1), (1, 2), (1, 5)])
+def test_a_lesson_of_the_same_names_is_told_by_its_numbers(mine, reference):
+    # Practices 1 and 2 both have a base_link and four wheels of the same names, and
+    # Practice 5 has them too: the tree alone is alike, where each link sits is not.
+    result = compare(EXAMPLES / f"example_{mine}", EXAMPLES / f"example_{reference}")
+    assert result.status == 2, result.format()
+    assert f"agrees with {EXAMPLES / f'example_{mine}'}" in result.error or \
+        f"agrees with examples/example_{mine}" in result.error
+    assert "This looks like another lesson's package" in result.error
+    assert result.resembles.endswith(f"example_{mine}")
+
+
+def test_a_student_export_of_another_lesson_names_that_lesson(tmp_path):
+    # Practice 2's robot with its own mistakes (no material on the base, an origin in
+    # millimetres), held against Practice 4's package.
+    package = altered(2, tmp_path, masses(1000 / 2700, "base_link"),
+                      ('xyz="0.20899 0.15071 0"', 'xyz="208.99 150.71 0"'))
+    result = against(4, package)
+    assert result.status == 2 and "1 of 5 links match" in result.error, result.format()
+    assert "Practice 2's package" in result.error
+    assert f"sw2sim compare {package} " in result.error and result.error.endswith(
+        "Nothing was compared.")
+
+
+def test_a_reference_that_is_no_lesson_is_questioned(tmp_path):
+    reference = copy_example(4, tmp_path, name="their_reference")
+    result = compare(EXAMPLES / "example_2", reference)
+    assert result.status == 2 and result.resembles is None, result.format()
+    assert f"check that {reference} is the package of your lesson" in result.error
+
+
+def test_a_robot_like_no_lesson(tmp_path):
+    urdf = tmp_path / "crane.urdf"
+    links = "".join(f'<link name="{n}"><inertial><mass value="1"/><inertia ixx="1" ixy="0" '
+                    f'ixz="0" iyy="1" iyz="0" izz="1"/></inertial></link>'
+                    for n in ("mast", "jib", "trolley", "hook"))
+    joints = "".join(f'<joint name="{c}_joint" type="prismatic"><parent link="{p}"/><child '
+                     f'link="{c}"/><origin xyz="0 0 {i}"/><axis xyz="1 0 0"/><limit lower="0" '
+                     f'upper="1" effort="1" velocity="1"/></joint>'
+                     for i, (p, c) in enumerate([("mast", "jib"), ("jib", "trolley"),
+                                                 ("trolley", "hook")], start=1))
+    urdf.write_text(f'<robot name="crane">{links}{joints}</robot>')
+    result = compare(urdf, EXAMPLES / "example_3")
+    assert result.status == 2 and result.resembles is None, result.format()
+    assert "none of the lessons' packages in" in result.error
+
+
+def test_a_package_missing_half_its_links_is_still_compared(tmp_path):
+    package = altered(1, tmp_path, *[lambda urdf, side=side: edit_re(
+        urdf, rf'<link\s+name="{side}_wheel">.*?</joint>', "") for side in ("front_left",
+                                                                           "front_right")])
+    result = against(1, package)
+    assert result.status == 1, result.format()
+    assert [d.code for d in result.differences] == ["link-missing"] * 2
+
+
+def test_the_command_says_so_with_status_2(capsys):
+    assert cli.main(["compare", str(EXAMPLES / "example_2"), str(EXAMPLES / "example_4")]) == 2
+    out, err = capsys.readouterr()
+    assert not out and err.startswith("sw2sim compare: ")
+    assert "another lesson's package" in err and "Practice 2's package" in err
+    assert cli.main(["compare", str(EXAMPLES / "example_2"), str(EXAMPLES / "example_4"),
+                     "--json"]) == 2
+    report = json.loads(capsys.readouterr().out)
+    assert report["status"] == 2 and report["resembles"].endswith("example_2")
+    assert report["differences"] == []
+
+
+# --- numbers in another unit ----------------------------------------------------------------
+
+@pytest.mark.parametrize("n, old, new, said", [
+    (4, 'upper="2.69"', 'upper="269"', "269 where the lesson has 2.69: typed in centimetres?"),
+    (4, 'upper="2.69"', 'upper="2690"', "2690 where the lesson has 2.69: typed in millimetres?"),
+    (4, 'upper="2.69"', 'upper="26.9"', "the decimal point one place too far right?"),
+    (4, 'upper="2.69"', 'upper="0.00269"', "metres converted once more, as if they were "
+                                           "millimetres?"),
+    (4, 'velocity="1" />', 'velocity="100" />', "100 where the lesson has 1: typed in cm/s?"),
+    (3, 'velocity="2" />', 'velocity="114.6" />', "typed in degrees per second?"),
+    (3, 'effort="1000"', 'effort="100"', "the decimal point one place too far left?")])
+def test_a_limit_in_another_unit(tmp_path, n, old, new, said):
+    line = the_line(against(n, altered(n, tmp_path, (old, new))), "limit-units")
+    assert said in line
+
+
+def test_limits_in_radians_converted_once_more(tmp_path):
+    package = altered(3, tmp_path, ('lower="-0.7854"\n      upper="0.7854"',
+                                    'lower="-0.0137"\n      upper="0.0137"'))
+    result = against(3, package)
+    assert [d.code for d in result.differences] == ["limit-units"] * 2, result.format()
+    assert "0.0137 where the lesson has 0.7854: radians converted once more, as if they were " \
+           "degrees?" in result.differences[1].text
+    assert "enter the upper limit in radians" in result.differences[1].text
+
+
+@pytest.mark.parametrize("xyz, said", [
+    ('xyz="22.5 0 2"', "22.5 where the lesson has 0.225: typed in centimetres?"),
+    ('xyz="2.25 0 0.2"', "2.25 where the lesson has 0.225: the decimal point one place too "
+                         "far right?"),
+    ('xyz="0.225 0 20"', "20 where the lesson has 0.02: typed in millimetres?"),
+    ('xyz="0.000225 0 0.00002"', "metres converted once more, as if they were millimetres?")])
+def test_an_origin_in_another_unit(tmp_path, xyz, said):
+    line = the_line(against(3, altered(3, tmp_path, ('xyz="0.225 0 0.02"', xyz))),
+                    "origin-units")
+    assert 'joint "end_arm_joint": origin xyz' in line and said in line
+
+
+def test_an_origin_turned_in_degrees(tmp_path):
+    package = altered(2, tmp_path, ('xyz="0.20899 0.15071 0"\n      rpy="0 0 -0.7854"',
+                                    'xyz="0.20899 0.15071 0"\n      rpy="0 0 -45"'))
+    result = against(2, package)
+    first = result.differences[0]
+    assert first.code == "rpy-units" and first.subject == 'joint "front_left_joint"', \
+        result.format()
+    assert "-45 where the lesson has -0.7854: typed in degrees?" in first.text
+    assert "origin-turned" not in [d.code for d in result.differences]
+
+
+# --- an inertia about the link's origin ---------------------------------------------------
+
+def about_origin(link: str):
+    """An edit writing `link`'s inertia as taken about its frame's origin: the tensor
+    about the centre of mass plus the parallel-axis term m(|d|^2 1 - d d^T)."""
+    def change(urdf):
+        text = urdf.read_text()
+        start = text.index(f'name="{link}"')
+        end = text.index("/>", re.compile(r"<inertia\s").search(text, start).start())
+        block = text[start:end]
+        centre = np.array(vector(re.search(r'<origin\s+xyz="([^"]+)"', block)[1], 3))
+        mass = float(re.search(r'<mass\s+value="([^"]+)"', block)[1])
+        terms = {k: float(v) for k, v in re.findall(INERTIA_TERMS, block)}
+        tensor = np.array([[terms["ixx"], terms["ixy"], terms["ixz"]],
+                           [terms["ixy"], terms["iyy"], terms["iyz"]],
+                           [terms["ixz"], terms["iyz"], terms["izz"]]])
+        moved = tensor + mass * (centre @ centre * np.eye(3) - np.outer(centre, centre))
+        at = {"ixx": (0, 0), "ixy": (0, 1), "ixz": (0, 2), "iyy": (1, 1), "iyz": (1, 2),
+              "izz": (2, 2)}
+        block = re.sub(INERTIA_TERMS, lambda m: f'{m[1]}="{float(moved[at[m[1]]])!r}"', block)
+        urdf.write_text(text[:start] + block + text[end:])
+    return change
+
+
+@pytest.mark.parametrize("n, link", [(3, "middle_arm_link"), (5, "base_link"),
+                                     (4, "base_link")])
+def test_an_inertia_about_the_link_origin(tmp_path, n, link):
+    line = the_line(against(n, altered(n, tmp_path, about_origin(link))), "inertia-origin")
+    assert f'link "{link}": principal moments' in line
+    assert "the reference's plus m(|d|^2*1 - d*d^T)" in line
+    assert "taken about the joint's frame (the link's origin) instead of the centre of mass" \
+        in line
+    assert '"taken at the center of mass" (Lxx, Lxy, ...)' in line
+
+
+def test_an_inertia_spread_otherwise_is_not_taken_for_one_about_the_origin(tmp_path):
+    package = altered(3, tmp_path, inertias(1.5, "middle_arm_link"))
+    assert "taken about" not in the_line(against(3, package), "inertia")
