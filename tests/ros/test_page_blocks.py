@@ -64,11 +64,18 @@ def _steady(record: dict, field: str, joint: str, last: float) -> np.ndarray:
     return values
 
 
-def _echoed(session, topic: str) -> str:
-    """What the page's `rostopic echo TOPIC` printed."""
+def _echoed(session, topic: str, messages: int = 20) -> str:
+    """What the page's `rostopic echo TOPIC` printed, once it has printed `messages`
+    messages (each ends with `---`), or after 30 s."""
     for r in session.running:
         if r.command.words[:3] == ["rostopic", "echo", topic]:
-            return r.log.read_text(errors="replace")
+            deadline = time.monotonic() + 30
+            while time.monotonic() < deadline:
+                text = r.log.read_text(errors="replace")
+                if text.count("\n---") >= messages:
+                    break
+                time.sleep(0.1)
+            return text
     raise AssertionError(f"the page has no `rostopic echo {topic}` that ran")
 
 
