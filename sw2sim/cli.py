@@ -20,6 +20,7 @@ from . import gl
 
 EXIT_OK, EXIT_ERRORS, EXIT_UNUSABLE = 0, 1, 2
 EXIT_BROKEN_PIPE = 141   # 128 + SIGPIPE: what a shell reports when the reader went away
+FORMATS = ("text", "json", "github", "sarif")   # what `check --format` prints
 
 DESCRIPTION = """\
 From a SolidWorks-exported URDF package to a MuJoCo simulation: check the package
@@ -61,11 +62,19 @@ the model it writes, followed by a summary. Exit status: 0 no errors (warnings a
 Several PATHs are checked one after the other, each with its own summary, then a
 line for them all; the exit status is the worst of theirs, and --json prints a list.
 
+For CI, --format github prints each finding as a GitHub Actions workflow command
+(::error file=FILE,line=LINE,title=RULE-ID::what is wrong. Fix: ...; warnings as
+::warning), which a workflow shows as annotations on the files, and --format sarif
+prints SARIF 2.1.0, the format code scanning reads. Their paths are relative to the
+working folder: run it from the repository's root.
+
 examples:
   sw2sim check examples/example_4
   sw2sim check my_robot --no-sim
   sw2sim check my_robot --json | python -m json.tool
   sw2sim check submissions/*.zip --no-sim
+  sw2sim check exports/* --format github       # in a GitHub Actions step
+  sw2sim check exports/* --format sarif > sw2sim.sarif
 """
 
 COMPARE_HELP = """\
@@ -277,7 +286,11 @@ def _parser() -> argparse.ArgumentParser:
                             "is checked in turn)")
     check.add_argument("--urdf", metavar="NAME", help="which URDF to read, where the package "
                          "holds several (its file name)")
-    check.add_argument("--json", action="store_true", help="print the report as JSON")
+    check.add_argument("--json", action="store_true", help="print the report as JSON "
+                       "(the same as --format json)")
+    check.add_argument("--format", choices=FORMATS, help="how to print the findings: text "
+                       "(the default), json, github (GitHub Actions workflow commands) or "
+                       "sarif (SARIF 2.1.0)")
     check.add_argument("--no-sim", action="store_true", help="skip the 4 s stability run")
     check.set_defaults(command="check", run=_check)
 
@@ -421,21 +434,36 @@ def _say(message: str) -> None:
 def _check(args) -> int:
     from . import archive
     from .check import check
+    from .check.workflow_commands import commands
     if args.urdf and len(args.path) > 1:
         _say("sw2sim check: --urdf picks a URDF of one package; give one PATH with it")
         return EXIT_UNUSABLE
+    if args.json and args.format not in (None, "json"):
+        _say(f"sw2sim check: --json and --format {args.format} ask for two formats; give one")
+        return EXIT_UNUSABLE
+    form = "json" if args.json else args.format or "text"
     reports = []
     for path in args.path:
         reports.append(check(path, stability=not args.no_sim, urdf=args.urdf))
         archive.discard()   # a class's worth of zips needs no disk for all of them at once
-        if not args.json:
-            print(("\n" if len(reports) > 1 else "") + reports[-1].format(), flush=True)
-    if args.json:
+        if form in ("text", "github"):   # as each package is done: a class takes minutes
+            shown = reports[-1].format() if form == "text" else commands(reports[-1])
+            print(("\n" if len(reports) > 1 and form == "text" else "") + shown, flush=True)
+    if form == "json":
         print(reports[0].to_json() if len(reports) == 1 else
               "[\n" + ",\n".join(r.to_json() for r in reports) + "\n]")
+    elif form == "sarif":
+        print(_sarif(reports))
     elif len(reports) > 1:
-        print("\n" + _checked(reports))
+        print(("\n" if form == "text" else "") + _checked(reports))
     return max(r.status for r in reports)
+
+
+def _sarif(reports) -> str:
+    import json
+    from .check import all_rules
+    from .check.sarif import log
+    return json.dumps(log(reports, all_rules(), _version()), indent=2)
 
 
 def _checked(reports) -> str:
@@ -536,8 +564,9 @@ def _ros(args) -> int:
 
 
 def _ros_env(args) -> int:
+    from .ros.run import missing
     from .ros.terminal import main
-    return main(args.folders)
+    return main(args.folders, missing())
 
 
 # -- port ----------------------------------------------------------------------------

@@ -83,12 +83,11 @@ def exports(found: dict[str, str]) -> str:
     return "".join(f"export {name}={shlex.quote(value)}\n" for name, value in found.items())
 
 
-def main(folders: list[str], say=print) -> int:
-    """`sw2sim ros-env`: print the lines, or say what is missing (on standard error, so that
-    `eval` of an empty output changes nothing)."""
+def main(folders: list[str], reason: str | None = None, say=print) -> int:
+    """`sw2sim ros-env`: print the lines, or say what is missing (`reason`: ROS 1 itself,
+    as sw2sim.ros.run.missing() says) on standard error, so that `eval` of an empty output
+    changes nothing."""
     from .messages import MissingRos
-    from .run import missing
-    reason = missing()
     absent = [f for f in folders if not Path(f).is_dir()]
     if reason or absent:
         why = reason or f"{', '.join(absent)}: no such folder; give folders that hold packages"
