@@ -43,17 +43,14 @@ as the machine goes (tests), kept from the last time simulated time was set back
 from __future__ import annotations
 
 import dataclasses
-import math
 import os
 import re
-import sys
 import tempfile
 import threading
 import time
 from pathlib import Path
 
 import mujoco
-import numpy as np
 
 from . import hardware
 from .schedule import SLACK, Schedule
@@ -112,16 +109,6 @@ class Controller:
     integral: float = 0.0     # the PID's integral term, in N or N·m
 
 
-@dataclasses.dataclass
-class Effort:
-    """One `apply_joint_effort` request, as gazebo_ros_api_plugin.cpp keeps it (a
-    ForceJointJob): applied at every step from `start` until `until` (None: until
-    cleared), added to the other requests on the same joint (ODE adds each SetForce)."""
-    joint: str
-    effort: float
-    start: float
-    until: float | None
-
 
 class World:
     """The model, its state and the ROS interfaces; `step` advances it."""
@@ -133,7 +120,7 @@ class World:
         self.namespace = ""
         self.paused = False
         self.controllers: dict[str, Controller] = {}
-        self.efforts: list[Effort] = []
+        self.efforts: list = []   # sw2sim.ros.gazebo_services.Effort: applied efforts
         self.handles: dict[str, hardware.Handle] = {}
         self.clock_ticks = Schedule(1.0 / CLOCK_HZ)
         self.next_clock_wall = 0.0
@@ -470,122 +457,6 @@ class World:
 
     # -- /gazebo -------------------------------------------------------------------------
     def services(self) -> None:
-        from gazebo_msgs.srv import (ApplyJointEffort, ApplyJointEffortResponse,
-                                     GetJointProperties, GetJointPropertiesResponse,
-                                     JointRequest, JointRequestResponse, SpawnModel,
-                                     SpawnModelResponse)
-        from rosgraph_msgs.msg import Clock
-        from std_srvs.srv import Empty, EmptyResponse
-        rospy = self.rospy
-        self.clock = rospy.Publisher("/clock", Clock, queue_size=10)
-
-        def spawn(req):
-            try:
-                said = self.spawn(req.model_xml, req.robot_namespace)
-            except Exception as exc:  # noqa: BLE001  (the caller gets the reason)
-                return SpawnModelResponse(success=False, status_message=why_not_spawned(exc))
-            return SpawnModelResponse(success=True, status_message=said)
-
-        def apply(req):
-            with self.lock:
-                try:
-                    self.model.joint(req.joint_name)
-                except (KeyError, AttributeError):
-                    return ApplyJointEffortResponse(False, f"no joint {req.joint_name!r}")
-                duration = req.duration.to_sec()
-                if duration == 0:
-                    return ApplyJointEffortResponse(True, "duration 0: nothing applied")
-                start = max(req.start_time.to_sec(), self.time)
-                until = None if duration < 0 else start + max(duration, self.model.opt.timestep)
-                self.efforts.append(Effort(req.joint_name, req.effort, start, until))
-            return ApplyJointEffortResponse(True, "")
-
-        def clear(req):
-            with self.lock:
-                self.efforts = [job for job in self.efforts if job.joint != req.joint_name]
-            return JointRequestResponse()
-
-        def properties(req):
-            with self.lock:
-                try:
-                    j = self.model.joint(req.joint_name).id
-                except (KeyError, AttributeError):
-                    return GetJointPropertiesResponse(success=False,
-                                                      status_message="no such joint")
-                kind = 0 if int(self.model.jnt_type[j]) == int(mujoco.mjtJoint.mjJNT_HINGE) else 2
-                return GetJointPropertiesResponse(
-                    type=kind, damping=[float(self.model.dof_damping[self.model.jnt_dofadr[j]])],
-                    position=[float(self.data.qpos[self.model.jnt_qposadr[j]])],
-                    rate=[float(self.data.qvel[self.model.jnt_dofadr[j]])], success=True)
-
-        def pause(_):
-            self.paused = True
-            return EmptyResponse()
-
-        def unpause(_):
-            with self.lock:
-                if self.paused:
-                    self.pace_from = (time.monotonic(), self.time)
-                self.paused = False
-            return EmptyResponse()
-
-        def reset_simulation(_):
-            self.reset_simulation()
-            return EmptyResponse()
-
-        def reset_world(_):
-            self.reset_world()
-            return EmptyResponse()
-
-        rospy.Service("/gazebo/spawn_urdf_model", SpawnModel, spawn)
-        rospy.Service("/gazebo/apply_joint_effort", ApplyJointEffort, apply)
-        rospy.Service("/gazebo/clear_joint_forces", JointRequest, clear)
-        rospy.Service("/gazebo/get_joint_properties", GetJointProperties, properties)
-        rospy.Service("/gazebo/pause_physics", Empty, pause)
-        rospy.Service("/gazebo/unpause_physics", Empty, unpause)
-        rospy.Service("/gazebo/reset_simulation", Empty, reset_simulation)
-        rospy.Service("/gazebo/reset_world", Empty, reset_world)
-
-
-def why_not_spawned(exc: Exception) -> str:
-    """What `spawn_model` prints when the simulation cannot load the URDF: the reason on
-    one line of the launch's screen (MuJoCo's messages take two), and where to see every
-    problem of the package at once."""
-    reason = " ".join(str(exc).split())
-    return f"{reason} (`sw2sim check` on the package lists every problem, each with its fix)"
-
-
-def main(argv: list[str] | None = None) -> int:
-    from . import messages
-    messages.ensure()
-    import rospy
-    argv = sys.argv[1:] if argv is None else argv
-    rospy.init_node("gazebo", disable_signals=True)
-    world = World(rospy)
-    world.services()
-    world.paused = "-u" in argv   # gzserver's flag: start paused
-    realtime = float(os.environ.get("SW2SIM_REALTIME", "1") or 0)
-    window = None
-    if os.environ.get("SW2SIM_VIEW") == "1":
-        from .viewer import Window
-        window = Window(world)
-    try:
-        while not rospy.is_shutdown():
-            if window is not None:
-                window.update()
-            if world.model is None or world.paused:
-                time.sleep(0.01)
-                continue
-            world.step()
-            if realtime > 0:
-                world.keep_pace(realtime)
-    except KeyboardInterrupt:
-        pass
-    if window is not None:
-        window.close()
-    rospy.signal_shutdown("stopped")
-    return 0
-
-
-if __name__ == "__main__":
-    sys.exit(main())
+        """/clock and the /gazebo services (sw2sim.ros.gazebo_services)."""
+        from .gazebo_services import advertise
+        advertise(self)

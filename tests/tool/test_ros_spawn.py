@@ -4,7 +4,8 @@
 import pytest
 
 from packages import EXAMPLES
-from sw2sim.ros.world import World, why_not_spawned
+from sw2sim.ros.gazebo_services import why_not_spawned
+from sw2sim.ros.world import World
 
 
 def test_a_model_that_cannot_load_is_reported_on_one_line_with_the_check(monkeypatch):
