@@ -119,8 +119,10 @@ rule("inertia-not-positive-definite", ERROR, "inertia", "An inertia tensor is no
      cause="A principal moment of inertia is zero or negative: a sign error in a product of "
            "inertia, values typed into the wrong attributes, or a point mass (all terms "
            "zero) on a link that moves.",
-     fix="Copy the tensor again from SolidWorks' Mass Properties, taken at the centre of "
-         "mass and aligned with the output coordinate system (the Lxx ... Lzz values).",
+     fix="Export again, or copy the tensor again from SolidWorks' Mass Properties, taken at "
+         "the centre of mass and aligned with the output coordinate system: Lxx, Lyy and "
+         "Lzz as shown, the products with their signs changed (ixy = -Lxy, ixz = -Lxz, "
+         "iyz = -Lyz), as the exporter writes them.",
      seen_in=("mujoco#759", "mujoco#2491"),
      repair=f"a link with no visual or collision geometry (a tool or sensor frame) has only a "
             f"placeholder tensor: {FRAME} A moving link whose six terms are all zero is "

@@ -56,21 +56,24 @@ rule("package-format-unknown", ERROR, "package", "package.xml declares a format 
 rule("package-name-invalid", ERROR, "package", "catkin refuses the package name",
      symptom="catkin stops with \"Package name ... does not follow naming conventions\"; ROS "
              "tools cannot find the package by name.",
-     cause="The exporter names the package after the SolidWorks assembly, so a space, a dot "
-           "or another sign in the assembly's name ends up in the package name; catkin "
-           "accepts letters, digits, _ and - only.",
-     fix="Rename the assembly (e.g. `my_robot.SLDASM`) and export again, or change <name> in "
-         "package.xml, the package:// paths in the URDF, the $(find ...) in the launch "
-         "files and the folder name to the same valid name.",
+     cause="The package is named by what is typed in the exporter's save dialog, which "
+           "offers the assembly's name; accepted as offered, a space, a dot or another sign "
+           "in the assembly's name ends up in the package name. catkin accepts letters, "
+           "digits, _ and - only.",
+     fix="Export again and type a valid name (e.g. `my_robot`) in the save dialog, or "
+         "change <name> in package.xml, the package:// paths in the URDF, the $(find ...) "
+         "in the launch files and the folder name to the same valid name.",
      seen_in=("solidworks_urdf_exporter#84",))
 rule("package-name-style", WARNING, "package", "The package name breaks ROS's naming rule",
      symptom="catkin builds the package but warns that the name \"does not follow the naming "
              "conventions\"; newer tools (catkin_create_pkg, the ROS 2 templates, the build "
              "farm) refuse such names.",
-     cause="The exporter keeps the assembly's capital letters, leading digits and dashes; "
-           "ROS names are lower-case letters, digits and _, starting with a letter.",
-     fix="Rename the assembly in lower case (e.g. `my_robot.SLDASM`) before exporting, or "
-         "rename the package, its mesh paths, its launch files and its folder alike.",
+     cause="The save dialog offers the assembly's name, capital letters, leading digits "
+           "and dashes included, and the exporter names the package by what the dialog "
+           "returns; ROS names are lower-case letters, digits and _, starting with a letter.",
+     fix="Export again and type the name in lower case (e.g. `my_robot`) in the save "
+         "dialog, or rename the package, its mesh paths, its launch files and its folder "
+         "alike.",
      seen_in=("solidworks_urdf_exporter#84",))
 rule("package-name-mismatch", ERROR, "package", "The mesh paths name a different package "
      "than package.xml",
