@@ -143,8 +143,9 @@ class Comparer:
                      summary=f"the whole model is {by} against the reference (its joints and "
                              "axes agree once turned back)",
                      cause="the export's Global Origin Coordinate System is not the lesson's: make "
-                           "it with Z pointing up and X forward (SolidWorks draws with Y up, and "
-                           "Automatically Generate takes the assembly's axes)")
+                           "it with Z pointing up and X forward (SolidWorks draws with Y up; "
+                           "Automatically Generate turns the assembly's axes so that Z is "
+                           "SolidWorks' up and X stays the assembly's X)")
         rb, mb = ref.links[ref.base], mine.links[mine.base]
         if rb.mass is None or mb.mass is None or not kids:
             return

@@ -63,8 +63,8 @@ def test_the_integral_term_is_control_toolboxs():
 
 def test_practice_5s_steering_joint_is_too_light_for_an_explicit_d_term():
     """_pages/reference/08-ros-without-gazebo.md: Gazebo applies a controller's force once
-    per 1 ms step, stable only while d * step < 2 * inertia; Practice 5's steering joint
-    (d = 0.5 N·m·s/rad) would need over 0.25 g·m² and has less."""
+    per 1 ms step, stable only while d * step < 2 * inertia; Practice 5's centre steering
+    joint (d = 0.5 N·m·s/rad) would need over 0.25 g·m² and has less."""
     import mujoco
 
     import sw2sim

@@ -40,8 +40,9 @@ LIMIT = round(math.radians(LIMIT_DEGREES), 4)   # 0.7854 rad, as typed into the 
 VELOCITY = 2.0                # rad/s
 EFFORT = 1000.0               # N·m
 # Soft limits (the exporter's "Safety" fields): the same as the hard limits; the gains tell
-# ros_control how hard to hold a joint inside them. k_velocity sets how firmly the speed is
-# held under the velocity limit (N·m per rad/s over it).
+# ros_control how hard to hold a joint inside them. k_velocity bounds the effort at every
+# speed, at most k_velocity × (velocity limit − speed) (N·m per rad/s; joint_limits_interface's
+# EffortJointSoftLimitsHandle): 20 N·m at rest for the middle joint.
 K_POSITION = 20.0             # 1/s: the largest speed towards a limit is k_position × distance to it
 K_VELOCITY = {"middle_arm_joint": 10.0, "end_arm_joint": 2.0}
 

@@ -38,7 +38,7 @@ LOWER, UPPER = 0.0, TRAVEL / 1000               # m, of the block's origin
 EFFORT = 200.0                # N: what a small toothed-belt axis pushes
 VELOCITY = 1.0                # m/s: a belt axis's comfortable speed; the whole travel in 2.7 s
 K_POSITION = 20.0             # 1/s: the largest speed towards a soft limit is k_position × distance
-K_VELOCITY = 400.0            # N per m/s over the velocity limit (a tenth of mass / time step)
+K_VELOCITY = 400.0            # N per m/s: the effort is at most k_velocity × (limit − speed), at every speed
 
 COLOURS = {
     "base_link": (0.55, 0.57, 0.60, 1.0),

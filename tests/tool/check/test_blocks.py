@@ -1,7 +1,7 @@
 """Every finding says what it stands in the way of: the simulation, ROS packaging alone, or
 nothing (advice). `check` lists them all; `convert` refuses only what stops the simulation,
 so a package whose only problems are ROS packaging, such as every package written by
-exporter versions up to 1.5 (package.xml without format="2"), converts."""
+the exporter's 1.4 releases (package.xml without format="2"), converts."""
 
 import json
 
@@ -15,7 +15,7 @@ from sw2sim.check.findings import rule
 
 
 def exporter_1_5(folder):
-    """A package as exporter 1.5 wrote it: package.xml uses <depend> without format="2"."""
+    """A package as exporter 1.4 wrote it: package.xml uses <depend> without format="2"."""
     package = copy_example(1, folder)
     edit(package / "package.xml", '<package format="2">', "<package>")
     return package
