@@ -108,13 +108,19 @@ class Finding:
         return (self.blocks == SIMULATION and self.severity in (FATAL, ERROR)
                 and self.repair is None)
 
+    @property
+    def says(self) -> str:
+        """What is wrong here and what to do: the line's text after the place, severity and
+        rule (which the CI formats, sarif.py and workflow_commands.py, carry apart)."""
+        text = f"{self.message}. Fix: {self.fix}"
+        if self.repair:
+            text = f"{text.rstrip('.')}. Convert repairs it: {self.repair}."
+        return text
+
     def format(self) -> str:
         kind = self.severity if self.blocks == SIMULATION or self.severity == WARNING \
             else f"{self.severity} ({BLOCKS_SAYS[self.blocks]})"
-        line = f"{self.where}: {kind} [{self.rule}] {self.message}. Fix: {self.fix}"
-        if self.repair:
-            line = f"{line.rstrip('.')}. Convert repairs it: {self.repair}."
-        return line
+        return f"{self.where}: {kind} [{self.rule}] {self.says}"
 
 
 @dataclass

@@ -11,13 +11,12 @@ the way the URDF parsers do (or give None, reported once by `number-invalid`), a
 
 from __future__ import annotations
 
-import re
 from collections import defaultdict
 from difflib import get_close_matches
 
 from ..xmlsafe import source_line
 from .findings import ERROR, PACKAGING, WARNING, rule
-from .urdf import number, owner
+from .urdf import number, owner, urdfdom_version_error
 
 JOINT_TYPES = ("revolute", "continuous", "prismatic", "fixed", "floating", "planar")
 
@@ -211,41 +210,6 @@ def _version(ctx) -> None:
     if said is not None:
         ctx.add("urdf-version", f'<robot version="{_short(version)}">: urdfdom refuses it '
                 f'("{said}")', line=source_line(ctx.robot, "version"))
-
-
-# urdfdom's URDFVersion reads each part with C's strtol: white space, a sign, digits.
-_STRTOL = re.compile(r"[ \t\n\v\f\r]*[+-]?[0-9]+")
-_LONG = 2 ** 63
-
-
-def urdfdom_version_error(text: str) -> str | None:
-    """urdfdom's message about <robot version=text>, or None when it reads version 1.0.
-
-    As urdf_export_helpers::URDFVersion does it (urdfdom 1.0.4, 3.0 to 5.0): the text is
-    split at dots, an empty last part dropped; there must be two parts, each a base-10
-    strtol number (leading white space and a sign allowed, nothing after the digits, not
-    negative) kept as a 32-bit unsigned number; and only (1, 0) is accepted."""
-    parts = text.split(".")
-    if parts[-1] == "":
-        parts.pop()
-    if len(parts) != 2:
-        return "The version attribute should be in the form 'x.y'"
-    numbers = []
-    for part in parts:
-        if part == "":
-            return "One of the fields of the version attribute is blank"
-        read = _STRTOL.match(part)
-        if read is None:
-            return "Version attribute is not an integer"
-        if read.end() != len(part):
-            return "Extra characters after the version number"
-        value = max(min(int(read.group().lstrip(" \t\n\v\f\r")), _LONG - 1), -_LONG)
-        if value < 0:
-            return "Version number must be positive"
-        numbers.append(value % 2 ** 32)
-    if numbers != [1, 0]:
-        return "Invalid 'version' specified; only version 1.0 is currently supported"
-    return None
 
 
 def _geometries(ctx, links) -> None:
