@@ -95,9 +95,13 @@ def find_package(path: str | os.PathLike, urdf: str | None = None) -> Package:
         raise LoadError(path, "no such file or folder; give a package folder or a .urdf file",
                         kind="missing")
     path = package_path(path)   # a zip, a folder around the package, a stray file
+    # A .urdf in urdf/ belongs to the folder above; given from inside urdf/ itself
+    # (`sw2sim check my_robot.urdf`), its parent is ".", which has no name of its own.
+    parent = path.parent
+    in_urdf = Path(os.path.abspath(parent)).name == "urdf"
     root = path if path.is_dir() else (
-        path.parent.parent if path.parent.name == "urdf" else path.parent)
-    name = root.name
+        Path(os.path.normpath(parent / "..")) if in_urdf else parent)
+    name = root.name if root.name not in ("", "..") else Path(os.path.abspath(root)).name
     manifest_file = root / "package.xml"
     if manifest_file.is_symlink() and root.resolve() not in manifest_file.resolve().parents:
         raise LoadError(manifest_file, "package.xml is a link to a file outside the package; "

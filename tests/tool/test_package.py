@@ -181,3 +181,17 @@ def test_source_line_finds_the_attribute_in_a_copy_too():
     assert joint.sourceline >= line
     twin = copy.deepcopy(package.robot).find("joint[@name='middle_arm_joint']")
     assert xmlsafe.source_line(twin, "name") == line
+
+
+def test_a_urdf_given_from_inside_its_urdf_folder_belongs_to_the_package_above(tmp_path, monkeypatch):
+    """`sw2sim check my_robot.urdf` typed in urdf/: the package is the folder above, its name
+    is that folder's, and the meshes are found there."""
+    from sw2sim.check import check
+    from sw2sim.package import find_package
+    shutil.copytree(Path(__file__).parents[2] / "examples" / "example_1", tmp_path / "example_1")
+    monkeypatch.chdir(tmp_path / "example_1" / "urdf")
+    package = find_package("example_1.urdf")
+    assert package.name == "example_1"
+    assert (package.root / "package.xml").is_file()
+    report = check("example_1.urdf", stability=False)
+    assert not [f for f in report.findings if f.severity == "error"], report.findings
