@@ -43,7 +43,8 @@ PATH_REPAIR = ("when exactly one file in the package has the path's file name an
                "the finding names the closest files.")
 
 rule("mesh-no-filename", ERROR, "mesh", "A <mesh> has no filename",
-     symptom="MuJoCo stops with an error about the mesh; ROS refuses the URDF.",
+     symptom="MuJoCo stops with an error about the mesh; ROS's parser (check_urdf) "
+             "prints an error about the missing filename.",
      cause="A hand edit that left <mesh/> empty or misspelt the attribute (it is `filename`).",
      fix="Write the mesh's path as the exporter does: "
          "<mesh filename=\"package://<package>/meshes/<link>.STL\"/>.")
