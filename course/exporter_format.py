@@ -444,7 +444,10 @@ def write_package(robot: Robot, folder: Path, *, gazebo_nodes: str = "", config:
     `gazebo_nodes` is added to launch/gazebo.launch and `config` replaces the joint-names YAML
     (both are what a lesson changes by hand); `rviz=False` leaves out urdf.rviz, which
     display.launch names but the exporter does not write. Generated files are overwritten;
-    anything else in the folder (scripts/, README) is left alone.
+    anything else in the folder (scripts/, README) is left alone. A package with hand edits
+    also gets them saved in hand_edits/, as `sw2sim edits save` saves them, so that a
+    student's re-export can be followed by `sw2sim edits restore` and `sw2sim check` finds
+    them saved.
     """
     folder = Path(folder)
     name = robot.name
@@ -459,8 +462,38 @@ def write_package(robot: Robot, folder: Path, *, gazebo_nodes: str = "", config:
     }
     if rviz:
         files["urdf.rviz"] = rviz_text(robot)
-    for link in robot.links:
-        files[f"meshes/{link.name}.STL"] = stl_bytes(link.part)
+    written = _write_files(folder, robot, files)
+    if {rel: text for rel, text in files.items() if rel != "urdf.rviz"} != _exported_files(robot):
+        from sw2sim.edits import FOLDER, save
+        save(folder, force=True)   # the design is the truth: its edits replace any saved
+        saved = folder / FOLDER
+        written += sorted(p for p in saved.rglob("*") if p.is_file())
+    return written
+
+
+def write_exported(robot: Robot, folder: Path) -> list[Path]:
+    """Write what the exporter itself writes for this robot, over `folder`: the lesson's
+    package as a student's re-export leaves it, every hand edit gone (the URDF and CSV,
+    package.xml, CMakeLists.txt, the joint-names YAML, both launch files and the meshes;
+    nothing else in the folder is touched)."""
+    return _write_files(Path(folder), robot, _exported_files(robot))
+
+
+def _exported_files(robot: Robot) -> dict[str, str | bytes]:
+    name = robot.name
+    return {
+        "CMakeLists.txt": cmakelists(name),
+        "package.xml": package_xml(name),
+        f"config/joint_names_{name}.yaml": joint_names_yaml(robot),
+        "launch/display.launch": display_launch(name),
+        "launch/gazebo.launch": gazebo_launch(name),
+        f"urdf/{name}.urdf": urdf_text(robot, as_exported=True),
+        f"urdf/{name}.csv": csv_text(robot),
+    }
+
+
+def _write_files(folder: Path, robot: Robot, files: dict[str, str | bytes]) -> list[Path]:
+    files = {**files, **{f"meshes/{link.name}.STL": stl_bytes(link.part) for link in robot.links}}
     written = []
     for rel, content in files.items():
         path = folder / rel

@@ -12,6 +12,7 @@ options it explains, so that `sw2sim COMMAND --help` is written and read in one 
 from __future__ import annotations
 
 import argparse
+import contextlib
 import os
 import sys
 from pathlib import Path
@@ -43,6 +44,7 @@ examples:
   sw2sim convert examples/example_4 -o example_4_mujoco
   sw2sim view examples/example_4
   sw2sim render examples/example_4 -o example_4.png --azimuth 200
+  sw2sim edits save examples/example_1        # before exporting again
 Run `sw2sim COMMAND --help` for each command's options.
 """
 
@@ -237,6 +239,31 @@ examples:
 """
 
 
+EDITS_HELP = """\
+Both of the exporter's buttons rewrite the URDF and its CSV, package.xml,
+CMakeLists.txt, config/joint_names_NAME.yaml and the two launch files, so exporting
+again wipes what was added to them by hand. Keep the hand edits across a re-export:
+
+  save     copies those files into PKG/hand_edits/ (with a manifest and a README),
+           a folder the exporter never writes. Run it after each hand edit.
+  restore  after the re-export: puts the saved package.xml, CMakeLists.txt, launch
+           files and joint-names YAML back, and carries into the new URDF what the
+           exporter never writes (transmissions, <gazebo> elements, a `world` link and
+           its joint, joints' <dynamics>, links' colours), keeping the new numbers.
+           Each restored item is one line; what it does not carry is named. A file
+           changed more than a minute after the new URDF was written is not
+           overwritten (--force does), and joints that are gone or new are named.
+
+Exit status: 0 done, 1 restore refused (a file edited since the re-export) or save
+refused (the saved copy has hand edits the URDF lacks: restore first), 2 nothing
+saved, or the package cannot be read.
+
+examples:
+  sw2sim edits save examples/example_1
+  sw2sim edits restore examples/example_1
+"""
+
+
 def _simulation_options(parser) -> None:
     """The options `ros` and `ros2` share: how long, how fast, and the viewer."""
     parser.add_argument("--duration", type=float, metavar="S", help="stop after S seconds")
@@ -253,7 +280,8 @@ def main(argv: list[str] | None = None) -> int:
         parser.print_help()
         return EXIT_UNUSABLE
     try:
-        status = args.run(args)
+        with _drawing_for(args.command, argv):
+            status = args.run(args)
         sys.stdout.flush()   # a closed pipe shows here, not in Python's flush at exit
         return status
     except KeyboardInterrupt:
@@ -271,11 +299,34 @@ def main(argv: list[str] | None = None) -> int:
         return EXIT_UNUSABLE
 
 
+def _drawing_for(command: str, argv: list[str] | None):
+    """The GL platform a command runs with. The command line's own `sw2sim check` (no
+    argv: the process ends with it) draws nothing, so MuJoCo, imported by the stability
+    run, loads no OpenGL library; a caller that passes argv (a test, a notebook) may draw
+    afterwards in the same process, and keeps its platform."""
+    if argv is None and command == "check":
+        return gl.not_drawing()
+    return contextlib.nullcontext()
+
+
+class _Version(argparse.Action):
+    """--version, looked up only when asked for: reading the installed package's metadata
+    costs every command a twentieth of a second of start-up."""
+
+    def __init__(self, option_strings, dest=argparse.SUPPRESS, **kwargs):
+        super().__init__(option_strings, dest, nargs=0, default=argparse.SUPPRESS,
+                         help="show program's version number and exit")
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        print(f"{parser.prog} {_version()}")
+        parser.exit()
+
+
 def _parser() -> argparse.ArgumentParser:
     raw = argparse.RawDescriptionHelpFormatter
     parser = argparse.ArgumentParser(prog="sw2sim", description=DESCRIPTION, epilog=EXAMPLES,
                                      formatter_class=raw)
-    parser.add_argument("--version", action="version", version=f"%(prog)s {_version()}")
+    parser.add_argument("--version", action=_Version)
     parser.set_defaults(command=None)
     commands = parser.add_subparsers(title="commands", metavar="COMMAND")
 
@@ -394,6 +445,16 @@ def _parser() -> argparse.ArgumentParser:
     port.add_argument("--urdf", metavar="NAME", help="which URDF to read, where the package "
                       "holds several (its file name)")
     port.set_defaults(command="port", run=_port)
+
+    edits = commands.add_parser("edits", help="save a package's hand edits, and restore them "
+                                "after exporting again", description=EDITS_HELP,
+                                formatter_class=raw)
+    edits.add_argument("action", choices=("save", "restore"),
+                       help="save before exporting again, restore after")
+    edits.add_argument("path", metavar="PKG", help="the package folder")
+    edits.add_argument("--force", action="store_true", help="save over a copy with more hand "
+                       "edits, or restore over files edited since the re-export")
+    edits.set_defaults(command="edits", run=_edits)
     return parser
 
 
@@ -583,6 +644,45 @@ def _port(args) -> int:
         _say(f"sw2sim port: cannot write {args.output}: {exc.strerror or exc}")
         return EXIT_UNUSABLE
     print(report.format())
+    return EXIT_OK
+
+
+# -- edits ---------------------------------------------------------------------------
+def _edits(args) -> int:
+    from . import edits
+    from .package import LoadError
+    where = args.path
+    try:
+        if args.action == "save":
+            files = edits.save(args.path, force=args.force)
+            print(f"saved {len(files)} file(s) in {Path(where) / edits.FOLDER}: "
+                  f"{', '.join(files)}")
+            return EXIT_OK
+        result = edits.restore(args.path, force=args.force)
+    except LoadError as exc:
+        _say(f"sw2sim edits: {exc}")
+        return EXIT_UNUSABLE
+    except edits.NothingSaved as exc:
+        _say(f"sw2sim edits restore: nothing saved ({exc}). Run `sw2sim edits save {where}` "
+             "before re-exporting; the hand edits a re-export removed must now be made again.")
+        return EXIT_UNUSABLE
+    except edits.WouldLoseEdits as exc:
+        _say(f"sw2sim edits save: the saved copy in {Path(where) / edits.FOLDER} has hand edits "
+             f"the URDF lacks ({exc}): after a re-export, run `sw2sim edits restore {where}` "
+             "first. If you removed them on purpose, add --force.")
+        return EXIT_ERRORS
+    except edits.EditedSince as exc:
+        _say(f"sw2sim edits restore: nothing restored: {exc} changed after the re-export (more "
+             "than a minute after the URDF), and restoring would overwrite that. Copy what you "
+             f"want to keep into {Path(where) / edits.FOLDER} (the saved copies), or add --force.")
+        return EXIT_ERRORS
+    except (OSError, ValueError, SyntaxError) as exc:   # lxml's XMLSyntaxError is a SyntaxError
+        _say(f"sw2sim edits {args.action}: {exc}")
+        return EXIT_UNUSABLE
+    for line in result.done:
+        print(line)
+    for line in result.warnings:
+        print(f"WARNING: {line}")
     return EXIT_OK
 
 
