@@ -14,6 +14,12 @@
 #
 # An output of up to LONG lines is shown open; a longer one is folded, its summary saying
 # how many lines it has. Styles: the "Block outputs" section of assets/css/main.css.
+#
+# Each printed line that is not empty sits in a <span class="code-output-line"> of its own,
+# and the newlines stay between the spans as text: the stylesheet wraps a line too long
+# for the box with a hanging indent (a `sw2sim check` line keeps its "Fix: ..." in view
+# instead of behind a scroll bar), which needs one box a line, while the text of the
+# <samp> (what a copy or a screen reader gets) is still exactly what the block printed.
 require "cgi/escape"
 
 module Sw2simSite
@@ -69,7 +75,15 @@ module Sw2simSite
       long = lines > LONG
       summary = long ? "Show output (#{lines} lines)" : "Output"
       %(<details class="code-output"#{long ? "" : " open"}><summary>#{summary}</summary>) +
-        %(<div class="code-output-text" tabindex="0"><samp>#{CGI.escapeHTML(text)}</samp></div></details>)
+        %(<div class="code-output-text" tabindex="0"><samp>#{lines_html(text)}</samp></div></details>)
+    end
+
+    # The output's lines, escaped, each non-empty one in its own span. An empty line is
+    # left bare: an empty inline box would take no height and the blank line would vanish.
+    def lines_html(text)
+      text.split("\n", -1).map do |line|
+        line.empty? ? "" : %(<span class="code-output-line">#{CGI.escapeHTML(line)}</span>)
+      end.join("\n")
     end
   end
 end

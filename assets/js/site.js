@@ -205,12 +205,36 @@
     window.addEventListener("resize", mark);
   }
 
+  // ---- Formulas that scroll show which way: more-left / more-right -----------------
+  // A formula wider than its column (letWideFormulasScroll above) gets a shadow at each
+  // edge beyond which more of it lies (.katex-display.more-left/.more-right in main.css),
+  // however little is hidden; without scripts a background-only shadow stands in.
+  function showWhereFormulasContinue() {
+    var formulas = document.querySelectorAll(".katex-display");
+    if (!formulas.length) return;
+
+    function mark(formula) {
+      var hidden = formula.scrollWidth - formula.clientWidth;
+      formula.classList.toggle("more-left", hidden > 1 && formula.scrollLeft > 1);
+      formula.classList.toggle("more-right", hidden > 1 && formula.scrollLeft < hidden - 1);
+    }
+    function markAll() { formulas.forEach(mark); }
+
+    formulas.forEach(function (formula) {
+      formula.addEventListener("scroll", function () { mark(formula); }, { passive: true });
+    });
+    markAll();
+    if (document.fonts) document.fonts.ready.then(markAll);
+    window.addEventListener("resize", markAll);
+  }
+
   function start() {
     setUpMenu();
     addCopyButtons();
     addHeadingLinks();
     setUpLightbox();
     letWideFormulasScroll();
+    showWhereFormulasContinue();
   }
 
   if (document.readyState === "loading") document.addEventListener("DOMContentLoaded", start);

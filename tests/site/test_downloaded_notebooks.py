@@ -1,16 +1,24 @@
 """A notebook downloaded from the site runs in an empty folder: its first cell fetches the
 files the lesson reads from the site (here the built site, served on 127.0.0.1), and its
-Markdown carries its images (_plugins/notebooks.rb, course/notebooks.py)."""
+Markdown carries its images (_plugins/notebooks.rb, course/notebooks.py).
+
+A local build does not know its address (the Pages build is given it). Downloaded from
+its page's link, the notebook gets the address the page was served from anyway
+(assets/js/notebook-download.js), so it runs with nothing set and nothing reachable but
+the local server; a reader without scripts sets SW2SIM_COURSE_SITE, as the page says."""
 
 from __future__ import annotations
 
 import functools
 import http.server
 import json
+import os
 import re
 import shutil
+import socket
 import subprocess
 import threading
+from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 import nbformat
@@ -21,9 +29,17 @@ from course.notebooks import code_cells
 from jekyll import bundle, whole_site  # noqa: F401
 from repository import ROOT
 
-# A lesson that imports the course's modules and one that reads an example package.
-DOWNLOADED = ["practice-2-01-modelling.ipynb", "practice-1-03-exported-package.ipynb"]
+# A lesson that imports the course's modules, downloaded from its page's link in a browser,
+# and one that reads an example package, taken as the site publishes it and run with
+# SW2SIM_COURSE_SITE set (what the page tells a reader without scripts to do).
+DOWNLOADED = [("practice-2-01-modelling.ipynb", "page link"),
+              ("practice-1-03-exported-package.ipynb", "SW2SIM_COURSE_SITE")]
 PLUGIN = ROOT / "_plugins" / "notebooks.rb"
+LINK_TEXT = "Download this lesson as a Jupyter notebook"
+# The browser reaches nothing but the local server.
+CHROMIUM_ARGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage",
+                 "--host-resolver-rules=MAP * ~NOTFOUND, EXCLUDE 127.0.0.1"]
+PROXY_VARIABLES = ("http_proxy", "https_proxy", "all_proxy", "HTTP_PROXY", "HTTPS_PROXY", "ALL_PROXY")
 
 
 @pytest.fixture(scope="module")
@@ -52,15 +68,88 @@ def _outputs(nb) -> list[list[tuple[str, str]]]:
             for c in code_cells(nb)]
 
 
-@pytest.mark.parametrize("name", DOWNLOADED)
-def test_a_downloaded_notebook_runs_in_an_empty_folder(name, served, tmp_path, monkeypatch):
+def chromium() -> str:
+    path = os.environ.get("CHROMIUM") or shutil.which("chromium") or "/usr/bin/chromium"
+    if not Path(path).is_file():
+        pytest.fail("Chromium not found: run `make setup` (it installs Debian's `chromium`), "
+                    "or point $CHROMIUM at a Chromium binary.", pytrace=False)
+    return path
+
+
+def page_of(notebook: Path) -> str:
+    """The address (permalink) of the page a notebook is made from."""
+    page = json.loads(notebook.read_text(encoding="utf-8"))["metadata"]["sw2sim"]["page"]
+    return re.search(r"^permalink:\s*(\S+)", (ROOT / page).read_text(encoding="utf-8"), re.M)[1]
+
+
+def download_from_its_page(address: str, name: str, folder: Path, site: Path) -> Path:
+    """Click the download link on the notebook's page, served at `address`, in Chromium,
+    and save what the browser downloads in `folder`.
+
+    In a thread of its own: Playwright's synchronous API will not start in a thread where
+    an event loop runs already, as the browser tests' session (tests/site/browser/
+    conftest.py) leaves one running when both run in one process."""
+    with ThreadPoolExecutor(max_workers=1) as thread:
+        return thread.submit(_download, address, name, folder, site).result()
+
+
+def _download(address: str, name: str, folder: Path, site: Path) -> Path:
+    from playwright.sync_api import sync_playwright
+
+    with sync_playwright() as playwright:
+        browser = playwright.chromium.launch(executable_path=chromium(), args=CHROMIUM_ARGS)
+        try:
+            page = browser.new_page(accept_downloads=True)
+            page.goto(address + page_of(site / "notebooks" / name), wait_until="load")
+            with page.expect_download() as download:
+                page.get_by_role("link", name=LINK_TEXT).click()
+            assert download.value.suggested_filename == name
+            download.value.save_as(folder / name)
+        finally:
+            browser.close()
+    return folder / name
+
+
+@pytest.fixture
+def offline(monkeypatch):
+    """Nothing but 127.0.0.1 reachable from the notebook's kernel: every other address goes
+    to a proxy at a local port that refuses connections (a socket bound, never listening,
+    for the test's length), which Python's urllib and pip both obey."""
+    with socket.socket() as refusing:
+        refusing.bind(("127.0.0.1", 0))
+        proxy = f"http://127.0.0.1:{refusing.getsockname()[1]}"
+        for variable in PROXY_VARIABLES:
+            monkeypatch.setenv(variable, proxy)
+        monkeypatch.setenv("no_proxy", "127.0.0.1")
+        monkeypatch.setenv("NO_PROXY", "127.0.0.1")
+        yield
+
+
+@pytest.mark.parametrize("name, how", DOWNLOADED)
+def test_a_downloaded_notebook_runs_in_an_empty_folder(name, how, served, tmp_path, monkeypatch,
+                                                       offline):
     site, address = served
     folder = tmp_path / "downloads"
     folder.mkdir()
-    shutil.copy(site / "notebooks" / name, folder / name)
-    # A local build does not know its address (the Pages build does): say it, as a reader
-    # with a local copy of the site would.
-    monkeypatch.setenv("SW2SIM_COURSE_SITE", address)
+    published = json.loads((site / "notebooks" / name).read_text(encoding="utf-8"))
+    monkeypatch.delenv("SW2SIM_COURSE_SITE", raising=False)
+    if how == "page link":
+        downloaded = json.loads(download_from_its_page(address, name, folder, site).read_text(
+            encoding="utf-8"))
+        # The local build published no address; the download carries the one the page was
+        # served from, and is otherwise the published file.
+        setup = [i for i, c in enumerate(published["cells"]) if "setup" in c["metadata"].get("tags", [])]
+        assert len(setup) == 1, f"{name}: no setup cell"
+        published_setup = "".join(published["cells"][setup[0]]["source"])
+        assert 'site=""' in published_setup, "the local build knows an address: not a local build?"
+        assert "".join(downloaded["cells"][setup[0]]["source"]) == \
+            published_setup.replace('site=""', f'site="{address}"', 1)
+        for cells in (downloaded["cells"], published["cells"]):
+            del cells[setup[0]]
+        assert downloaded == published, "the download changed more than the setup cell's address"
+    else:
+        shutil.copy(site / "notebooks" / name, folder / name)
+        monkeypatch.setenv("SW2SIM_COURSE_SITE", address)
     wanted = json.loads((ROOT / "notebooks" / "files.json").read_text(encoding="utf-8"))[name]
     modules = any(f.startswith("course/") for f in wanted)
     nb = nbformat.read(folder / name, as_version=4)

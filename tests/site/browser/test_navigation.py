@@ -172,3 +172,83 @@ def test_on_this_page_marks_the_section_in_view(browser_page):
         assert page.evaluate(CURRENT_ENTRY) in ([], [ids[0]])
     finally:
         page.set_viewport_size({"width": 1280, "height": 800})
+
+
+# ---- reading on a phone: the whole title, a long page's groups ----------------------------
+
+CONFIG = ROOT / "_config.yml"
+
+
+@pytest.mark.parametrize("size", [PHONE, {"width": 320, "height": 640}], ids=["390", "320"])
+def test_the_header_shows_the_whole_title_on_a_phone(browser_page, size):
+    """On a phone the site's title wraps inside the header (assets/css/main.css, "The whole
+    title on a phone") instead of ending in "From SolidWo…": none of it is cut off, and it
+    leaves the menu button and the search box their room."""
+    title = yaml.safe_load(CONFIG.read_text(encoding="utf-8"))["title"]
+    page = browser_page.page
+    page.set_viewport_size(size)
+    try:
+        browser_page.visit("/practice-1/modelling/")
+        shown = page.locator(".site-title").evaluate("""e => {
+            const r = e.getBoundingClientRect(), header = e.parentElement.getBoundingClientRect();
+            const style = getComputedStyle(e);
+            return {text: e.textContent.trim(), scrollWidth: e.scrollWidth, clientWidth: e.clientWidth,
+                    scrollHeight: e.scrollHeight, clientHeight: e.clientHeight,
+                    left: r.left, right: r.right, top: r.top, bottom: r.bottom,
+                    headerTop: header.top, headerBottom: header.bottom,
+                    ellipsis: style.textOverflow === 'ellipsis' && style.overflow !== 'visible',
+                    menuRight: document.querySelector('.nav-toggle').getBoundingClientRect().right,
+                    searchLeft: document.querySelector('.site-search').getBoundingClientRect().left};
+        }""")
+    finally:
+        page.set_viewport_size({"width": 1280, "height": 800})
+    assert shown["text"] == title
+    assert shown["scrollWidth"] <= shown["clientWidth"], f"the title is cut: {shown}"
+    assert shown["scrollHeight"] <= shown["clientHeight"] + 1, f"the title is cut: {shown}"
+    assert not shown["ellipsis"], f"the title can still end in an ellipsis: {shown}"
+    assert shown["headerTop"] <= shown["top"] and shown["bottom"] <= shown["headerBottom"], shown
+    assert shown["menuRight"] <= shown["left"] and shown["right"] <= shown["searchLeft"], shown
+
+
+TROUBLESHOOTING = "/reference/troubleshooting/"
+RULES = ROOT / "_data" / "check_rules.json"
+
+
+def test_troubleshooting_jumps_between_groups_on_a_phone(phone):
+    """The Troubleshooting page, tens of thousands of pixels on a phone, lists its groups
+    first (nav#groups), one link a group of _data/check_rules.json; a link to a group
+    shows its heading; deep among the entries a link at the bottom of the window (sticky)
+    leads back to the groups' list."""
+    import json
+
+    groups = json.loads(RULES.read_text(encoding="utf-8"))["groups"]
+    page = phone.page
+    visit = phone.visit(TROUBLESHOOTING)
+    assert not visit.problems(), visit.problems()
+    height = page.evaluate("document.scrollingElement.scrollHeight")
+    assert height > 10 * PHONE["height"], f"the page is only {height} px tall: nothing to jump over"
+
+    jump = page.locator("nav#groups")
+    assert box(jump)["top"] < PHONE["height"], "the groups' list is not on the first screen"
+    links = jump.locator("a").evaluate_all("links => links.map(a => [a.hash.slice(1), a.textContent])")
+    assert links == [[g["id"], g["title"]] for g in groups], links
+    header = box(page.locator(".site-header"))
+
+    # A group's link brings its heading up under the header.
+    last = groups[-1]["id"]
+    click_where_it_shows(page, jump.locator(f'a[href="#{last}"]'))
+    page.wait_for_function(f"() => location.hash === '#{last}'", timeout=5000)
+    heading = box(page.locator(f"h2#{last}"))
+    assert header["bottom"] <= heading["top"] < PHONE["height"] / 2, heading
+
+    # Deep in the page, among the entries of the middle group, the way back is in view.
+    middle = groups[len(groups) // 2]["rules"][-1]["id"]
+    page.locator(f"h3#{middle}").scroll_into_view_if_needed()
+    back = page.locator(".back-to-groups a")
+    shown = box(back)
+    assert header["bottom"] < shown["top"] and shown["bottom"] <= PHONE["height"], \
+        f"the link back to the groups is not in the window: {shown}"
+    click_where_it_shows(page, back)
+    page.wait_for_function("() => location.hash === '#groups'", timeout=5000)
+    top = box(jump)["top"]
+    assert header["bottom"] <= top < PHONE["height"] / 2, f"the groups' list is not in view: {top}"

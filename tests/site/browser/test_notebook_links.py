@@ -12,7 +12,8 @@ from course.snippets import find_pages
 from course.snippets.parse import split_front_matter
 
 LINK = re.compile(r'<p class="notebook-link">\s*'
-                  r'<a href="(?P<href>[^"]+)" download="(?P<name>[^"]+)">'
+                  r'<a href="(?P<href>[^"]+)" download="(?P<name>[^"]+)"\s+'
+                  r'data-notebook-site="(?P<site>[^"]+)">'
                   r"Download this\s+lesson as a Jupyter notebook</a>")
 
 
@@ -33,8 +34,11 @@ def test_every_lesson_page_with_python_links_its_notebook(site):
             continue
         name = with_notebook[path]
         assert len(links) == 1, f"{path}: no download link for {name}"
-        href, download = links[0]
+        href, download, root = links[0]
         assert download == name and href.endswith(f"/notebooks/{name}"), (path, href)
+        # The site's root, from which the download's script makes the address it writes
+        # into the notebook (assets/js/notebook-download.js).
+        assert href == root.rstrip("/") + f"/notebooks/{name}", (path, href, root)
         # Served as the site serves it (baseurl included): the committed notebook, its code
         # and outputs unchanged (the site embeds its images: _plugins/notebooks.rb).
         with urllib.request.urlopen(site.url(href)) as response:
