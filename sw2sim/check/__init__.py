@@ -26,9 +26,9 @@ __all__ = ["check", "check_package", "open_package", "all_rules", "Context", "Fi
 
 def _checks():
     # Imported here so that every rule is registered before the first check runs.
-    from . import structure, package_xml, meshes, inertia, joints, collisions
-    return [structure.check, package_xml.check, meshes.check, inertia.check, joints.check,
-            collisions.check]
+    from . import structure, package_xml, hand_edits, meshes, inertia, joints, collisions
+    return [structure.check, package_xml.check, hand_edits.check, meshes.check, inertia.check,
+            joints.check, collisions.check]
 
 
 def check(source, *, stability: bool = True, options: Options = Options(),

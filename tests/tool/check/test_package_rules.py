@@ -82,7 +82,10 @@ def package_findings(path: Path, rule_id: str | None = None) -> list:
 
 
 def test_battery_covers_every_package_rule():
-    assert set(BATTERY) == set(WHERE) == {r.id for r in all_rules().values() if r.group == GROUP}
+    # hand-edits-unsaved has its own module (sw2sim/check/hand_edits.py) and tests
+    # (test_hand_edits_rule.py): it reads the launch files and hand_edits/, not package.xml.
+    assert set(BATTERY) == set(WHERE) == {r.id for r in all_rules().values()
+                                          if r.group == GROUP} - {"hand-edits-unsaved"}
 
 
 @pytest.mark.parametrize("rule_id", sorted(BATTERY))
