@@ -13,7 +13,7 @@ from pathlib import Path
 import numpy as np
 from matplotlib.patches import Arc, Polygon, Rectangle
 
-from .plotting import figure, save
+from .plotting import variants
 from .practices.practice_5 import design
 
 PHI_DEGREES = design.STEER_LIMIT_DEGREES     # the example: the centre joint at its limit, 30°
@@ -65,9 +65,17 @@ def _dimension(ax, p, q, label, offset, text_at=0.5, **kw):
 
 def draw(path: Path, phi_degrees: float = PHI_DEGREES) -> dict[str, float]:
     n = numbers(phi_degrees)
+    for fig, ax, phone in variants(path, figsize=(8.6, 6.2), phone_figsize=(5.0, 4.0)):
+        _diagram(ax, n, phone)
+    return n
+
+
+def _diagram(ax, n: dict[str, float], phone: bool) -> None:
+    """The car, its wheels' axes to the turning centre, the angles and the dimensions. On a
+    phone the lettering is larger beside the car: w's dimension goes higher, clear of the
+    angles' names over the front wheels."""
     l, w, R = n["l"], n["w"], n["R"]
     inner, outer, phi = (math.radians(n[k]) for k in ("inner", "outer", "phi"))
-    fig, ax = figure(figsize=(8.6, 6.2))
     ax.set_aspect("equal")
     ax.grid(False)
     ax.set_axis_off()
@@ -127,10 +135,8 @@ def draw(path: Path, phi_degrees: float = PHI_DEGREES) -> dict[str, float]:
     ax.text(cx, cy - 0.035, "turning centre", ha="center", va="top", fontsize=10.5)
     # l, w and R
     _dimension(ax, _p(0, -w / 2), _p(l, -w / 2), f"l = {l * 1000:.0f} mm", (0.13, 0.0))
-    _dimension(ax, _p(l, w / 2), _p(l, -w / 2), f"w = {w * 1000:.0f} mm", (0.0, 0.11))
+    _dimension(ax, _p(l, w / 2), _p(l, -w / 2), f"w = {w * 1000:.0f} mm", (0.0, 0.22 if phone else 0.11))
     _dimension(ax, _p(*centre), _p(0, 0), f"R = l / tan Φ = {R:.3f} m", (0.0, -0.13), text_at=0.42)
     ax.plot(*_p(0, 0), "+", color="black", ms=9, zorder=6)
     ax.set_xlim(cx - 0.08, w / 2 + 0.25)
-    ax.set_ylim(-0.2, l + 0.2)
-    save(fig, path)
-    return n
+    ax.set_ylim(-0.2, l + (0.27 if phone else 0.2))

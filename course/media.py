@@ -1,8 +1,10 @@
 """Every figure on the site, and `python -m course.media` to bring them up to date.
 
 Each practice lists its figures in `course/practices/<practice>/figures.py` as
-`FIGURES = [Figure(...), ...]`. When a figure is made, media/manifest.json records the
-hash of its inputs and a digest of the file written. Its inputs are the module that
+`FIGURES = [Figure(...), ...]`. A figure with lettering also has a phone variant
+(course/phone.py), which its code writes beside it in the same run, from the same data:
+`Figure(..., phone=True)`. When a figure is made, media/manifest.json records the
+hash of its inputs and a digest of each file written. Its inputs are the module that
 draws it, every repository module that module (or a script it lists) imports, the files
 it lists as read, and the versions of the libraries that can change it. A figure is
 stale when either no longer matches: an input changed, or the file was changed by hand.
@@ -23,6 +25,7 @@ from .freshness import Fingerprint, cores  # noqa: F401  (tools/benchmark.py imp
 # freshness, which is never run as __main__: under `python -m course.media` this module
 # is, and a class of its own would not be the one the figures' code raises.
 from .freshness import Unavailable
+from .phone import phone_output, phone_path
 from .practices import PRACTICES, ROOT
 
 MANIFEST = ROOT / "media" / "manifest.json"
@@ -42,10 +45,16 @@ class Figure:
     make: Callable[[Path], None]     # writes the figure to the path it is given
     inputs: list[str] = field(default_factory=list)  # files or folders it reads, from the root
     caption: str = ""
+    phone: bool = False              # `make` also writes the phone variant, phone_path(path)
 
     @property
     def path(self) -> Path:
         return ROOT / self.output
+
+    @property
+    def outputs(self) -> list[str]:
+        """Every file the figure's code writes: its own, then its phone variant's."""
+        return [self.output, *([phone_output(self.output)] if self.phone else [])]
 
     def input_hash(self) -> str:
         module = Path(sys.modules[self.make.__module__].__file__)
@@ -84,10 +93,18 @@ def make_figure(output: str, path: str | Path) -> float | str:
     start = time.perf_counter()
     for fig in all_figures():
         if fig.output == output:
+            phone = phone_path(path)
+            phone.unlink(missing_ok=True)
             try:
                 fig.make(Path(path))
             except Unavailable as exc:
                 return str(exc)
+            if phone.is_file() != fig.phone:
+                where = sys.modules[fig.make.__module__].__file__
+                raise RuntimeError(
+                    f"{output}: its code {'wrote' if phone.is_file() else 'did not write'} a phone "
+                    f"variant ({phone.name}) but its Figure says phone={fig.phone}: in {where}, "
+                    f"give it phone={phone.is_file()}")
             return time.perf_counter() - start
     raise KeyError(f"no figure makes {output}")
 
@@ -98,8 +115,16 @@ def read_manifest() -> dict[str, dict[str, str]]:
 
 
 def is_current(fig: Figure, manifest: dict[str, dict[str, str]]) -> bool:
-    """Whether the file is exactly what was made from inputs all as they are now."""
-    return freshness.is_recorded(manifest, fig.output, fig.path, fig.input_hash)
+    """Whether its files are exactly what was made from inputs all as they are now."""
+    hashed: list[str] = []
+
+    def inputs() -> str:   # hashed once for the figure and its phone variant
+        if not hashed:
+            hashed.append(fig.input_hash())
+        return hashed[0]
+
+    return all(freshness.is_recorded(manifest, output, ROOT / output, inputs)
+               for output in fig.outputs)
 
 
 def stale(figures: list[Figure], manifest: dict[str, dict[str, str]]) -> list[Figure]:
@@ -133,7 +158,9 @@ def main(argv: list[str] | None = None) -> int:
         if isinstance(seconds, str):   # cannot be made here: kept as it is, still stale
             line = f"{_bar(i, len(todo))} {fig.output} kept as it is: {seconds}"
         else:
-            manifest[fig.output] = freshness.manifest_entry(fig.path, fig.input_hash())
+            inputs = fig.input_hash()
+            for output in fig.outputs:
+                manifest[output] = freshness.manifest_entry(ROOT / output, inputs)
             line = f"{_bar(i, len(todo))} {fig.output} ({seconds:.1f} s)"
         # A figure kept as it is keeps its line; the others' lines replace each other.
         last = i == len(todo) or isinstance(seconds, str)

@@ -5,13 +5,24 @@ its own width when it is narrower. `save` sets every text of a plot at least lar
 to be MIN_TEXT_PX high there, whatever the figure's width, and records the smallest text
 it drew, in pixels of the image, in the PNG (TEXT_KEY), where tests/site/browser measure
 it at the width the page shows the picture.
+
+A phone shows the column some 330 px wide, where a plot laid out for 736 px would have
+its lettering at half its size. So `variants` draws a plot twice with the same code: as
+the pages show it on wider screens, and for phones (course/phone.py), narrower, its
+panels one above the other and its text at least PHONE.min_text_px high in a column
+PHONE.shown_px wide.
 """
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from pathlib import Path
 
 import matplotlib
+import numpy as np
+
+from . import phone
+from .phone import phone_path
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
@@ -34,20 +45,131 @@ MIN_TEXT_PX = 10.5    # the smallest text, in CSS pixels, at that width
 TEXT_KEY = "sw2sim:smallest-text-px"   # PNG text chunk: the smallest text, image pixels
 
 
+@dataclass(frozen=True)
+class Layout:
+    """Where a variant of a figure is shown: at most `shown_px` CSS pixels wide, with no
+    text smaller than `min_text_px` there."""
+
+    shown_px: float
+    min_text_px: float
+
+
+DESKTOP = Layout(SHOWN_PX, MIN_TEXT_PX)
+PHONE = Layout(phone.SHOWN_PX, phone.MIN_TEXT_PX)
+# The phone variant is 650 px wide: about twice the width it is shown at, sharp on a
+# phone's screen and in the enlarged view.
+PHONE_WIDTH_IN = 5.0
+# A panel on the phone keeps its shape, a little taller (its lettering takes a larger
+# share of it), and is never flatter or taller than these shares of the width.
+PHONE_STRETCH = 1.15
+PHONE_PANEL = (0.42, 0.75)
+
+
 def figure(nrows: int = 1, ncols: int = 1, **kwargs):
     """A new figure and its axes, in the site's style."""
     with plt.rc_context(STYLE):
         return plt.subplots(nrows, ncols, layout="constrained", **kwargs)
 
 
-def save(fig, path: str | Path) -> None:
-    """Raise any text too small for where the figure is shown, then save and close. The
-    only metadata is the smallest text's size, so identical plots give identical files."""
+def variants(path: str | Path, nrows: int = 1, ncols: int = 1, *, figsize: tuple[float, float],
+             phone_figsize: tuple[float, float] | None = None,
+             phone_grid: tuple[int, int] | None = None, **kwargs):
+    """The figure at `path` and its phone variant, drawn by the same code:
+
+        for fig, (ax, err), phone in variants(path, 1, 2, figsize=(12, 4.6)):
+            ax.plot(...)            # drawn twice: data computed once, above the loop
+            ax.legend(loc="lower right" if phone else "upper left")
+
+    Each pass gives a new figure with axes shaped as `figure(nrows, ncols, ...)` gives
+    them (same sharing, same gridspec_kw), and saves it when the loop body is done: first
+    at `path` as the pages show it, then at `phone_path(path)` laid out for a phone, where
+    the panels of each column go one above the other, the columns one after the other
+    (`phone_grid` (rows, columns) places them row by row in another grid instead, a strip
+    of pictures two by two, say), `PHONE_WIDTH_IN` wide (or `phone_figsize`)."""
+    path = Path(path)
+    fig, axes = figure(nrows, ncols, figsize=figsize, **kwargs)
+    yield fig, axes, False
+    save(fig, path)
+    fig, axes = phone_figure(nrows, ncols, figsize=figsize, phone_figsize=phone_figsize,
+                             phone_grid=phone_grid, **kwargs)
+    yield fig, axes, True
+    save(fig, phone_path(path), PHONE)
+
+
+def phone_figure(nrows: int, ncols: int, *, figsize: tuple[float, float],
+                 phone_figsize: tuple[float, float] | None = None,
+                 phone_grid: tuple[int, int] | None = None, sharex=False, sharey=False,
+                 gridspec_kw: dict | None = None, **kwargs):
+    """The phone layout of `figure(nrows, ncols, figsize=figsize, ...)`: see `variants`.
+    Returns the figure and its axes in the shape the desktop figure's have."""
+    gridspec_kw = dict(gridspec_kw or {})
+    widths = np.asarray(gridspec_kw.pop("width_ratios", [1.0] * ncols), dtype=float)
+    heights = np.asarray(gridspec_kw.pop("height_ratios", [1.0] * nrows), dtype=float)
+    cells = [(r, c) for c in range(ncols) for r in range(nrows)]   # column by column
+    if phone_grid is None:
+        grid = (nrows * ncols, 1)
+        # each panel as tall, for the phone's width, as it is for its own column's width
+        column_in = figsize[0] * widths / widths.sum()
+        row_in = figsize[1] * heights / heights.sum()
+        panel = [PHONE_STRETCH * row_in[r] * PHONE_WIDTH_IN / column_in[c] for r, c in cells]
+        share = heights[[r for r, _ in cells]] / heights.max()   # a short row stays short
+        panel = np.clip(panel, PHONE_WIDTH_IN * PHONE_PANEL[0] * share,
+                        PHONE_WIDTH_IN * PHONE_PANEL[1] * share)
+        ratios = {"height_ratios": list(panel)}
+    else:
+        grid = phone_grid
+        cells = [(r, c) for r in range(nrows) for c in range(ncols)]   # row by row
+        if grid[0] * grid[1] < len(cells):
+            raise ValueError(f"phone_grid {grid} has fewer places than {nrows} × {ncols} axes")
+        panel = [figsize[1] / nrows * PHONE_WIDTH_IN / figsize[0] * ncols / grid[1]] * grid[0]
+        ratios = {}
+    size = phone_figsize or (PHONE_WIDTH_IN, float(np.sum(panel)))
+    with plt.rc_context(STYLE):
+        fig = plt.figure(figsize=size, layout="constrained")
+        placed = fig.subplots(*grid, squeeze=False, gridspec_kw={**gridspec_kw, **ratios}, **kwargs)
+    flat = list(placed.flat)
+    for extra in flat[len(cells):]:
+        extra.remove()
+    axes = np.empty((nrows, ncols), dtype=object)
+    for (r, c), ax in zip(cells, flat):
+        axes[r, c] = ax
+    _share(axes, "x", sharex)
+    _share(axes, "y", sharey)
+    if nrows == 1 and ncols == 1:
+        return fig, axes[0, 0]
+    return fig, (axes.ravel() if nrows == 1 or ncols == 1 else axes)
+
+
+def _share(axes: np.ndarray, which: str, how) -> None:
+    """Share the x or y axis of the axes (in the desktop figure's shape) as plt.subplots
+    would (`how`: True or "all", "row", "col")."""
+    if how in (False, "none", None):
+        return
+    if how in (True, "all"):
+        groups = [list(axes.flat)]
+    elif how == "row":
+        groups = [list(row) for row in axes]
+    else:
+        groups = [list(col) for col in axes.T]
+    for group in groups:
+        for ax in group[1:]:
+            getattr(ax, f"share{which}")(group[0])
+    if which == "x":   # as plt.subplots does: only the lowest panel of a column labels x
+        shared = {ax for group in groups for ax in group}
+        for r, c in np.ndindex(*axes.shape):
+            if r + 1 < axes.shape[0] and axes[r, c] in shared and axes[r + 1, c] in shared:
+                axes[r, c].tick_params(axis="x", labelbottom=False)
+
+
+def save(fig, path: str | Path, layout: Layout = DESKTOP) -> None:
+    """Raise any text too small for where the figure is shown (`layout`), then save and
+    close. The only metadata is the smallest text's size, so identical plots give
+    identical files."""
     with plt.rc_context(STYLE):
         dpi = plt.rcParams["savefig.dpi"]
         width = fig.get_figwidth() * dpi
-        # points for MIN_TEXT_PX on the page: the image is shown min(SHOWN_PX, width) wide
-        least = MIN_TEXT_PX * 72.0 / dpi * width / min(SHOWN_PX, width)
+        # points for min_text_px on the page: the image is shown min(shown_px, width) wide
+        least = layout.min_text_px * 72.0 / dpi * width / min(layout.shown_px, width)
         for ax in fig.axes:
             ax.tick_params(which="both", labelsize=max(least, _tick_size(ax)))
         fig.canvas.draw()

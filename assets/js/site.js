@@ -172,11 +172,15 @@
       button.className = "zoom-button";
       var what = image.getAttribute("alt");
       button.setAttribute("aria-label", "Enlarge image" + (what ? ": " + what : ""));
-      image.parentNode.insertBefore(button, image);
-      button.appendChild(image);
+      // Figures with a phone variant: the button takes the whole <picture>, which
+      // chooses the variant (_plugins/phone_figures.rb), and the enlarged view opens the
+      // figure at full size, the <img>'s own src, whichever variant the page shows.
+      var shown = image.parentNode.nodeName === "PICTURE" ? image.parentNode : image;
+      shown.parentNode.insertBefore(button, shown);
+      button.appendChild(shown);
       button.addEventListener("click", function () {
         opener = button;
-        big.src = image.currentSrc || image.src;
+        big.src = image.src;
         big.alt = image.getAttribute("alt") || "";
         document.body.classList.add("lightbox-open");
         dialog.showModal();

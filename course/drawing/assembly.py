@@ -19,7 +19,8 @@ from shapely.ops import polylabel
 
 from ..parts import Part
 from .projection import VIEWS, Projector, trace_view, view_prims
-from .sheet import SCALES, TITLE_BLOCK, VIEW_GAP, boxes_fit, fit, frame, title_block, view_label
+from .sheet import (SCALES, TITLE_BLOCK, VIEW_GAP, boxes_fit, fit, frame, largest_fitting, title_block,
+                    view_label)
 from .solids import Solid
 from .svg import Circle, Fill, Line, Poly, Text, bbox, document, moved, text_width, views_box
 
@@ -229,12 +230,14 @@ def _balloons(anchors: list, box, k: float, avoid_y=()) -> list:
     return out
 
 
-def _joint_marks(robot, poses, k: float, box) -> list:
+def _joint_marks(robot, poses, k: float, box, listed: list | None = None) -> list:
     """Each joint's origin (a cross) and axis (an arrow, or a circled dot when the axis points
     at the viewer, a circle alone when away) in the top view; its name beside the view, on a
     leader, on the side of the view the joint is on. Joints that share an origin have their
     names one under the other; names that would touch are spread apart, the leader bending to
-    reach them."""
+    reach them. With `listed` (a list), the names are not drawn beside the view, whose width
+    they would double on a phone: each origin gets a letter beside its cross instead, and
+    `listed` receives (letter, name) for a key under the views."""
     d, h, v = (np.array(x) for x in VIEWS["top"])
     middle = (box[0] + box[2]) / 2
     out = []
@@ -264,6 +267,8 @@ def _joint_marks(robot, poses, k: float, box) -> list:
             out.append(Circle(x, y, 2.5, "joint"))
             if axis @ d < 0:  # pointing at the viewer: a dot
                 out.append(Circle(x, y, 0.6, "jointfill"))
+    if listed is not None:
+        return out + _joint_letters(names, out, listed)
     for right in (False, True):
         side = sorted(((y, x, n) for (x, y), n in names.items() if (x >= middle) == right))
         # each origin's names as a block of lines centred on it, blocks pushed apart downwards
@@ -289,6 +294,28 @@ def _joint_marks(robot, poses, k: float, box) -> list:
             for i, name in enumerate(joint_names):
                 out.append(Text(end + (1.0 if right else -1.0), top + i * JOINT_PITCH + 0.36 * JOINT_TEXT,
                                 name, JOINT_TEXT, "start" if right else "end", style="jointtext"))
+    return out
+
+
+def _joint_letters(names: dict, marks: list, listed: list) -> list:
+    """A letter beside each joint origin of `names` ((x, y) -> joint names), top to bottom
+    and left to right, in the first corner round its cross clear of the `marks` and of the
+    letters placed before; (letter, name) of each joint appended to `listed`."""
+    taken = [shapely.box(*bbox([m])) if isinstance(m, Text) else shapely.LineString(m.points()).buffer(0.3)
+             for m in marks if isinstance(m, (Line, Poly, Text))]
+    taken += [shapely.Point(m.cx, m.cy).buffer(m.r) for m in marks if isinstance(m, Circle)]
+    out = []
+    for i, ((x, y), joint_names) in enumerate(sorted(names.items(), key=lambda o: (o[0][1], o[0][0]))):
+        letter = chr(ord("a") + i)
+        gap = JOINT_CROSS + 0.8
+        corners = [(x + gap, y - gap, "start"), (x - gap, y - gap, "end"),
+                   (x + gap, y + gap + 0.75 * JOINT_TEXT, "start"), (x - gap, y + gap + 0.75 * JOINT_TEXT, "end")]
+        texts = [Text(cx, cy, letter, JOINT_TEXT, anchor, style="jointtext") for cx, cy, anchor in corners]
+        text = next((t for t in texts if not any(shapely.box(*bbox([t])).intersects(o) for o in taken)),
+                    texts[0])
+        taken.append(shapely.box(*bbox([text])))
+        out.append(text)
+        listed += [(letter, name) for name in joint_names]
     return out
 
 
@@ -344,12 +371,16 @@ def _parts_list(items: list[_Item]) -> tuple[list, float]:
     return out, height
 
 
-def assembly_drawing_svg(robot, views_only: bool = False) -> str:
+def assembly_drawing_svg(robot, views_only: bool = False, width: float | None = None) -> str:
     """The robot's assembly drawing: front and top views with balloons, the joints' origins and
     axes, a parts list and the title block. `views_only`: the views with their balloons and
     joint marks alone, cropped close, and under them a key to the balloons (what a page
-    shows, so that the lettering is large enough at the page's width)."""
-    layers, items = _assembly_layers(robot)
+    shows, so that the lettering is large enough at the page's width). `width` (with
+    `views_only`): the views drawn smaller, if they must, so that they are at most `width`
+    mm wide with their names and marks, the lettering as large as ever (for a phone's
+    column: course/drawing/narrow.py)."""
+    joints: list = []
+    layers, items = _assembly_layers(robot, width if views_only else None, joints)
     title = f"{robot.name} ({robot.name}.SLDASM)"
     if not views_only:
         return document(layers, title)
@@ -358,6 +389,9 @@ def assembly_drawing_svg(robot, views_only: bool = False) -> str:
     key = [Text(x0, y1 + 6.0 + i * 1.4 * KEY_TEXT,
                 f"{item.number}  {item.part.title or item.part.name} ({item.part.name}.SLDPRT)"
                 f" × {len(item.links)}", KEY_TEXT, "start") for i, item in enumerate(items)]
+    # the joints' names, when the narrow views mark each origin with a letter instead
+    key += [Text(x0, y1 + 6.0 + (len(items) + i) * 1.4 * KEY_TEXT, f"{letter}  {name}", KEY_TEXT, "start",
+                 style="jointtext") for i, (letter, name) in enumerate(joints)]
     views.append(("key", key))
     return document(views, title, views_box(views))
 
@@ -365,8 +399,10 @@ def assembly_drawing_svg(robot, views_only: bool = False) -> str:
 KEY_TEXT = 4.1  # mm: the key to the balloons under the views, as large as the joints' names
 
 
-def _assembly_layers(robot) -> tuple[list, list]:
-    """The sheet's layers and the parts list's items."""
+def _assembly_layers(robot, width: float | None = None, joints: list | None = None) -> tuple[list, list]:
+    """The sheet's layers and the parts list's items; or, `width` given, the views alone at
+    the sheet's scale or, if that makes them wider than `width` mm, the largest that does not,
+    the joints marked with letters and their names appended to `joints` (`_joint_marks`)."""
     items = _items(robot)
     if not items:
         raise ValueError(f"robot {robot.name!r} has no link with a part to draw")
@@ -387,13 +423,13 @@ def _assembly_layers(robot) -> tuple[list, list]:
     reserved = [TITLE_BLOCK, (TITLE_BLOCK[0], TITLE_BLOCK[1] - plist_h, TITLE_BLOCK[2], TITLE_BLOCK[1])]
     lines_cache: dict = {}
 
-    def view_layers(v: str, k: float, full: bool) -> list[tuple[str, list]]:
+    def view_layers(v: str, k: float, full: bool, listed: list | None = None) -> list[tuple[str, list]]:
         if full:
             layers = _assembly_links(views[v], v, k, lines_cache)
         else:  # extents only: the outlines' boxes stand in for the lines
             layers = [("", [Poly(_rings(p.outline.envelope, k), True) for p in views[v]])]
         box = bbox([q for _, prims in layers for q in prims])
-        notes = _joint_marks(robot, poses, k, box) if v == "top" else []
+        notes = _joint_marks(robot, poses, k, box, listed) if v == "top" else []
         leaders = [y for n in notes if isinstance(n, Line) and n.style == "jointleader" for y in (n.y1, n.y2)]
         notes += _balloons(anchors[v], bbox([Poly((((box[0], box[1]), (box[2], box[3])),))] + notes), k,
                            leaders)
@@ -416,6 +452,18 @@ def _assembly_layers(robot) -> tuple[list, list]:
             break
     else:
         raise ValueError(f"robot {robot.name!r} does not fit an A4 sheet at 1:100")
+    if width is not None:
+        def wide(k: float) -> float:
+            front, top = extent(view_layers("front", k, False)), extent(view_layers("top", k, False, []))
+            return max(front[2], top[2]) - min(front[0], top[0])
+
+        k = largest_fitting(wide, k, width)
+        front, top = extent(view_layers("front", k, False)), extent(view_layers("top", k, False, []))
+        dy = front[3] - top[1] + VIEW_GAP
+        listed = [] if joints is None else joints
+        layers = view_layers("front", k, True) + [(name, moved(prims, 0.0, dy))
+                                                   for name, prims in view_layers("top", k, True, listed)]
+        return layers, items
     layers = [(name, moved(prims, *origin)) for name, prims in view_layers("front", k, True)]
     layers += [(name, moved(prims, origin[0], origin[1] + dy)) for name, prims in view_layers("top", k, True)]
     mass = sum(lk.part.mass for item in items for lk in item.links)

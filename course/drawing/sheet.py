@@ -7,6 +7,7 @@ and `part_drawing_svg`: a part in three views with dimensions.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -196,10 +197,9 @@ def part_drawing_svg(part: Part, views_only: bool = False) -> str:
     return sheet.views_svg() if views_only else sheet.svg()
 
 
-def part_sheet(part: Part) -> PartSheet:
-    """The part's drawing sheet as primitives, with the dimensions placed on it."""
-    check_dimensions(part)
-    solid = Solid(part.features)
+def _sheet_layout(part: Part, solid: Solid):
+    """The largest standard scale at which the part's views fit the sheet: its label, k (sheet
+    mm per metre), the views' offsets from the front view and the front view's origin."""
     for label, factor in SCALES:
         k = 1000.0 * factor
         boxes = {v: bbox(_part_view(part, solid, v, k, None)) for v in VIEWS}
@@ -208,9 +208,15 @@ def part_sheet(part: Part) -> PartSheet:
                   for v, b in boxes.items()]
         origin = boxes_fit(placed, [TITLE_BLOCK])
         if origin is not None:
-            break
-    else:
-        raise ValueError(f"part {part.name!r} does not fit an A4 sheet at 1:100")
+            return label, k, offsets, origin
+    raise ValueError(f"part {part.name!r} does not fit an A4 sheet at 1:100")
+
+
+def part_sheet(part: Part) -> PartSheet:
+    """The part's drawing sheet as primitives, with the dimensions placed on it."""
+    check_dimensions(part)
+    solid = Solid(part.features)
+    label, k, offsets, origin = _sheet_layout(part, solid)
     layers, dims = [], []
     for view in VIEWS:
         traced = trace_view(solid, view, k)
@@ -224,3 +230,54 @@ def part_sheet(part: Part) -> PartSheet:
                          f"{fmt(m.density)} kg/m³", f"{part.mass:.3f} kg", label)
     layers.append(("sheet", frame() + block))
     return PartSheet(f"{part.title or part.name} ({part.name}.SLDPRT)", layers, dims)
+
+
+# --- the views for a narrow column ---------------------------------------------------------------
+
+
+def largest_fitting(wide, k: float, width: float) -> float:
+    """The largest scale up to `k` (sheet mm per metre) at which what is drawn, `wide(k)` mm
+    wide, is at most `width` mm wide: `k` itself when it fits. The lettering keeps its size
+    at every scale, so the width is not proportional to the scale: the scale is found by
+    halving an interval, then rounded down to a tenth of a sheet mm per metre."""
+    if wide(k) <= width:
+        return k
+    low, high = k / 64, k
+    if wide(low) > width:
+        raise ValueError(f"the views cannot be drawn {width:g} mm wide even at 1/64 of the sheet's "
+                         "scale: their lettering alone is wider")
+    for _ in range(24):
+        middle = (low + high) / 2
+        low, high = (middle, high) if wide(middle) <= width else (low, middle)
+    return math.floor(low * 10) / 10
+
+
+def _stacked(views: dict) -> list:
+    """The views one above the other: the top view under the front view, sharing its columns
+    as in first-angle projection, and the side view under the top view, centred under both.
+    `views` are each view's primitives about its own origin; returns the layers."""
+    f, t, s = (bbox(views[v]) for v in ("front", "top", "side"))
+    top_dy = f[3] - t[1] + VIEW_GAP
+    middle = (min(f[0], t[0]) + max(f[2], t[2])) / 2
+    side = (middle - (s[0] + s[2]) / 2, t[3] + top_dy - s[1] + VIEW_GAP)
+    offsets = {"front": (0.0, 0.0), "top": (0.0, top_dy), "side": side}
+    return [(f"view-{v}", moved(views[v], *offsets[v])) for v in VIEWS]
+
+
+def part_views_narrow_svg(part: Part, width: float) -> str:
+    """The part's views for a narrow column (a phone's: course/drawing/narrow.py): one above
+    the other (`_stacked`), each named, with its dimensions, at the sheet's scale or, if that
+    makes them wider than `width` mm, the largest that does not. The lettering is as large as
+    on the sheet."""
+    check_dimensions(part)
+    solid = Solid(part.features)
+    _, k, _, _ = _sheet_layout(part, solid)
+
+    def wide(k: float) -> float:
+        x0, _, x1, _ = bbox([p for _, prims in _stacked(
+            {v: _part_view(part, solid, v, k, None) for v in VIEWS}) for p in prims])
+        return x1 - x0
+
+    k = largest_fitting(wide, k, width)
+    layers = _stacked({v: _part_view(part, solid, v, k, trace_view(solid, v, k)) for v in VIEWS})
+    return document(layers, f"{part.title or part.name} ({part.name}.SLDPRT)", views_box(layers))

@@ -3,6 +3,7 @@
 from pathlib import Path
 
 from ..parts import Cylinder, Dimension, Material, Part
+from ..phone import phone_path
 
 
 def mm(*values: float):
@@ -41,28 +42,39 @@ def holed_wheel(material: Material, diameter: float, width: float, bore: float, 
 
 def part_drawing(part_factory, views_only: bool = False):
     """A figure maker: the drawing sheet of the part that `part_factory()` returns, or only
-    its views (what the pages show; the sheet is linked beside them)."""
+    its views (what the pages show; the sheet is linked beside them), with their phone
+    variant beside them when they are too wide for a phone (course/drawing/narrow.py)."""
     def make(path: Path) -> None:
-        from ..drawing import part_drawing_svg
-        path.write_text(part_drawing_svg(part_factory(), views_only))
+        from ..drawing import narrow, part_drawing_svg
+        part = part_factory()
+        svg = part_drawing_svg(part, views_only)
+        path.write_text(svg)
+        if views_only and narrow.too_wide(svg):
+            phone_path(path).write_text(narrow.part_views_narrow(part, svg))
     make.__qualname__ = f"drawing_{part_factory.__name__}" + ("_views" if views_only else "")
     return make
 
 
 def assembly_drawing(robot_factory, views_only: bool = False):
     """A figure maker: the assembly drawing of the robot that `robot_factory()` returns, or
-    only its views with a key to the balloons."""
+    only its views with a key to the balloons, and their phone variant as `part_drawing`'s."""
     def make(path: Path) -> None:
-        from ..drawing import assembly_drawing_svg
-        path.write_text(assembly_drawing_svg(robot_factory(), views_only))
+        from ..drawing import assembly_drawing_svg, narrow
+        robot = robot_factory()
+        svg = assembly_drawing_svg(robot, views_only)
+        path.write_text(svg)
+        if views_only and narrow.too_wide(svg):
+            phone_path(path).write_text(narrow.assembly_views_narrow(robot, svg))
     make.__qualname__ = "assembly" + ("_views" if views_only else "")
     return make
 
 
-def drawing_figures(media: str, name: str, maker, factory, inputs: list[str], title: str) -> list:
+def drawing_figures(media: str, name: str, maker, factory, inputs: list[str], title: str,
+                    phone: bool = False) -> list:
     """A drawing's two figures: `name.svg`, the views the page shows, and `name-sheet.svg`,
     the whole A4 sheet with its title block, which the page links to. `maker` is
-    part_drawing or assembly_drawing."""
+    part_drawing or assembly_drawing; `phone`: the views are too wide for a phone's column,
+    and their maker writes a phone variant too (`name-phone.svg`)."""
     from ..media import Figure
-    return [Figure(f"{media}/{name}.svg", maker(factory, views_only=True), inputs, title),
+    return [Figure(f"{media}/{name}.svg", maker(factory, views_only=True), inputs, title, phone=phone),
             Figure(f"{media}/{name}-sheet.svg", maker(factory), inputs, f"{title}: the whole sheet")]

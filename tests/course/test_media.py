@@ -17,6 +17,8 @@ from parallel_jobs import selected, workers
 from PIL import Image
 
 from course.media import all_figures, is_current, make_figure, read_manifest
+from course.phone import SUFFIX as PHONE_SUFFIX
+from course.phone import phone_path
 from repository import ROOT
 
 FIGURES = all_figures()
@@ -101,14 +103,26 @@ def test_figure_matches_what_its_code_makes(fig, made, current):
     result = job.result()  # re-raises whatever the figure's code raised
     if isinstance(result, str):   # a program it needs is not installed here (RViz, say)
         pytest.skip(f"{fig.output} cannot be made here: {result}")
-    if fig.path.suffix == ".svg":
-        assert fresh.read_text() == fig.path.read_text(), f"{fig.output} differs; run `make media`"
-        return
-    a = np.asarray(Image.open(fig.path).convert("RGB"), dtype=float) / 255
-    b = np.asarray(Image.open(fresh).convert("RGB"), dtype=float) / 255
-    assert a.shape == b.shape, f"{fig.output}: size {a.shape} now {b.shape}; run `make media`"
-    rms = float(np.sqrt(np.mean((a - b) ** 2)))
-    assert rms <= PNG_RMS_TOLERANCE, f"{fig.output}: RMS difference {rms:.3f}; run `make media`"
+    # the figure, then its phone variant if it has one
+    for output, made_now in zip(fig.outputs, (fresh, phone_path(fresh))):
+        committed = ROOT / output
+        if committed.suffix == ".svg":
+            assert made_now.read_text() == committed.read_text(), f"{output} differs; run `make media`"
+            continue
+        a = np.asarray(Image.open(committed).convert("RGB"), dtype=float) / 255
+        b = np.asarray(Image.open(made_now).convert("RGB"), dtype=float) / 255
+        assert a.shape == b.shape, f"{output}: size {a.shape} now {b.shape}; run `make media`"
+        rms = float(np.sqrt(np.mean((a - b) ** 2)))
+        assert rms <= PNG_RMS_TOLERANCE, f"{output}: RMS difference {rms:.3f}; run `make media`"
+
+
+def test_every_phone_variant_is_made_by_the_figure_it_belongs_to():
+    """media/ holds a phone variant (course/phone.py) for exactly the figures whose code
+    makes one: none left over from a figure that no longer has one."""
+    made = {output for fig in FIGURES for output in fig.outputs[1:]}
+    on_disk = {p.relative_to(ROOT).as_posix() for p in (ROOT / "media").rglob(f"*{PHONE_SUFFIX}.*")}
+    assert on_disk == made, (f"left over: {sorted(on_disk - made)}; "
+                             f"missing (run `make media`): {sorted(made - on_disk)}")
 
 
 # The freshness mechanism the figures share with the notebooks (course/freshness.py).

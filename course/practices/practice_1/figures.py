@@ -6,7 +6,7 @@ import numpy as np
 
 from sw2sim import load_package
 from ...media import Figure
-from ...plotting import figure, save
+from ...plotting import variants
 from ...rviz_picture import rviz_picture
 from sw2sim.render import render, save_png
 from .. import load_script
@@ -68,44 +68,42 @@ def base_run(fixed_base: bool, duration: float, frames=()):
 def unlocked_strip(path: Path) -> None:
     moments = [0.0, 0.5, 1.0, 1.5]
     _, _, pictures = base_run(False, max(moments) + 0.01, frames=moments)
-    fig, axes = figure(1, len(pictures), figsize=(12, 2.4))
-    for ax, pic, t in zip(axes, pictures, moments):
-        ax.imshow(pic)
-        ax.set_title(f"t = {t:.1f} s")
-        ax.set_axis_off()
-    save(fig, path)
+    for fig, axes, _ in variants(path, 1, len(pictures), figsize=(12, 2.4), phone_grid=(2, 2),
+                                    phone_figsize=(5.0, 3.5)):
+        for ax, pic, t in zip(axes, pictures, moments):
+            ax.imshow(pic)
+            ax.set_title(f"t = {t:.1f} s")
+            ax.set_axis_off()
 
 
 def base_drift(path: Path) -> None:
     duration = 3.0
     t_free, x_free, _ = base_run(False, duration)
     t_locked, x_locked, _ = base_run(True, duration)
-    fig, ax = figure()
-    ax.axvspan(0, 1, color="0.5", alpha=0.15, label="1 N·m on each wheel")
-    ax.plot(t_free, x_free, label="base free (no world joint)")
-    ax.plot(t_locked, x_locked, label="base locked to the world")
-    ax.set_xlabel("time [s]")
-    ax.set_ylabel("distance the base has moved [m]")
-    ax.legend(loc="upper left")
-    save(fig, path)
+    for fig, ax, phone in variants(path, figsize=(8.0, 4.2)):
+        ax.axvspan(0, 1, color="0.5", alpha=0.15, label="1 N·m on each wheel")
+        ax.plot(t_free, x_free, label="base free (no world joint)")
+        ax.plot(t_locked, x_locked, label="base locked to the world")
+        ax.set_xlabel("time [s]")
+        ax.set_ylabel("distance moved [m]" if phone else "distance the base has moved [m]")
+        ax.legend(loc="upper left")
 
 
 def wheel_velocity(path: Path) -> None:
     model = load_package(PACKAGE).compile()
     data = mujoco.MjData(model)
     t, tau, omega = pulses().run(model, data, WHEEL_JOINTS, duration=30.0)
-    fig, (ax_w, ax_t) = figure(2, 1, sharex=True, figsize=(8, 5),
-                               gridspec_kw={"height_ratios": [3, 1]})
-    for i, name in enumerate(WHEEL_JOINTS):
-        ax_w.plot(t, omega[:, i], label=name, lw=2.2 if i == 0 else 1.2,
-                  ls="-" if i == 0 else (0, (4, 2 + i)))
-    ax_w.set_ylabel("wheel speed [rad/s]")
-    ax_w.legend(ncols=2, loc="upper left")
-    ax_t.plot(t, tau, color="tab:red", drawstyle="steps-post")
-    ax_t.set_ylabel("torque [N·m]")
-    ax_t.set_xlabel("time [s]")
-    ax_t.set_xticks(np.arange(0, 31, 5))
-    save(fig, path)
+    for fig, (ax_w, ax_t), phone in variants(path, 2, 1, sharex=True, figsize=(8, 5),
+                                             gridspec_kw={"height_ratios": [3, 1]}):
+        for i, name in enumerate(WHEEL_JOINTS):
+            ax_w.plot(t, omega[:, i], label=name, lw=2.2 if i == 0 else 1.2,
+                      ls="-" if i == 0 else (0, (4, 2 + i)))
+        ax_w.set_ylabel("wheel speed [rad/s]")
+        ax_w.legend(ncols=1, loc="lower right") if phone else ax_w.legend(ncols=2, loc="upper left")
+        ax_t.plot(t, tau, color="tab:red", drawstyle="steps-post")
+        ax_t.set_ylabel("torque [N·m]")
+        ax_t.set_xlabel("time [s]")
+        ax_t.set_xticks(np.arange(0, 31, 5))
 
 
 MEDIA = "media/practice-1"
@@ -114,14 +112,16 @@ DESIGN = ["course/practices/practice_1/design.py", "course/parts.py", "course/dr
 SIM = [PACKAGE, "sw2sim/loader.py", "sw2sim/render.py", "course/plotting.py"]
 
 FIGURES = [
-    *drawing_figures(MEDIA, "base", part_drawing, design.base, DESIGN, "Drawing of the base"),
-    *drawing_figures(MEDIA, "wheel", part_drawing, design.wheel, DESIGN, "Drawing of the wheel"),
+    *drawing_figures(MEDIA, "base", part_drawing, design.base, DESIGN, "Drawing of the base",
+                      phone=True),
+    *drawing_figures(MEDIA, "wheel", part_drawing, design.wheel, DESIGN, "Drawing of the wheel",
+                      phone=True),
     *drawing_figures(MEDIA, "assembly", assembly_drawing, design.robot, DESIGN + ["course/exporter_format.py"], "Assembly"),
     Figure(f"{MEDIA}/model.png", model_picture, SIM, "The model in MuJoCo"),
     Figure(f"{MEDIA}/joint_axes.png", axes_picture, SIM, "Joint axes"),
-    Figure(f"{MEDIA}/unlocked_base.png", unlocked_strip, SIM, "A base that is not locked"),
-    Figure(f"{MEDIA}/base_drift.png", base_drift, SIM, "Locked and free base"),
-    Figure(f"{MEDIA}/wheel_velocity.png", wheel_velocity, SIM, "Wheel speed under pulses"),
+    Figure(f"{MEDIA}/unlocked_base.png", unlocked_strip, SIM, "A base that is not locked", phone=True),
+    Figure(f"{MEDIA}/base_drift.png", base_drift, SIM, "Locked and free base", phone=True),
+    Figure(f"{MEDIA}/wheel_velocity.png", wheel_velocity, SIM, "Wheel speed under pulses", phone=True),
     Figure(f"{MEDIA}/rviz.png", rviz_picture(PACKAGE), [PACKAGE], "Practice 1's robot in RViz, as display.launch opens it"),
 ]
 

@@ -6,7 +6,7 @@ import numpy as np
 
 from sw2sim import load_package
 from ...media import Figure
-from ...plotting import figure, save
+from ...plotting import variants
 from ...rviz_picture import rviz_picture
 from sw2sim.render import render, save_png
 from .. import load_script
@@ -84,14 +84,13 @@ def wrong_axis_picture(path: Path) -> None:
             frames.append(render(model, data, width=480, height=400, lookat=[0.21, -0.17, 0.15],
                                  distance=0.8, azimuth=115, elevation=-22).astype(float))
         panels.append(np.mean(frames, axis=0).astype(np.uint8))
-    fig, axes = figure(1, 2, figsize=(10, 4.2))
     titles = ["own axis: the wheel turns in its own plane",
               "front-left axis reused: it tumbles about a diameter"]
-    for ax, picture, title in zip(axes, panels, titles):
-        ax.imshow(picture)
-        ax.set_title(title, fontsize=11)
-        ax.set_axis_off()
-    save(fig, path)
+    for fig, axes, _ in variants(path, 1, 2, figsize=(10, 4.2)):
+        for ax, picture, title in zip(axes, panels, titles):
+            ax.imshow(picture)
+            ax.set_title(title, fontsize=11)
+            ax.set_axis_off()
 
 
 def wrong_axis_in_frame(link: str, other: str) -> list[float]:
@@ -168,20 +167,19 @@ def free_base_plot(path: Path) -> None:
     t1, travel1, _, _ = free_run("examples/example_1", False)
     t2, travel2, yaw2, speed2 = free_run(PACKAGE, False)
     t_locked, _, _, speed_locked = free_run(PACKAGE, True)
-    fig, (ax_x, ax_w) = figure(1, 2, figsize=(11, 4))
     i = WHEEL_JOINTS.index(FREE_WHEEL)
-    for ax in (ax_x, ax_w):
-        ax.axvspan(0, 1, color="0.5", alpha=0.15, label="1 N·m on each wheel")
-        ax.set_xlabel("time [s]")
-    ax_x.plot(t1, travel1, label="Practice 1, base free")
-    ax_x.plot(t2, travel2, label="Practice 2, base free", lw=2.2)
-    ax_x.set_ylabel("distance the base has moved [m]")
-    ax_x.legend(loc="upper left")
-    ax_w.plot(t_locked, speed_locked[:, i], label="base locked to the world")
-    ax_w.plot(t2, speed2[:, i], label="base free, wheels on the floor", lw=2.2)
-    ax_w.set_ylabel(f"{FREE_WHEEL} speed [rad/s]")
-    ax_w.legend(loc="center right")
-    save(fig, path)
+    for fig, (ax_x, ax_w), phone in variants(path, 1, 2, figsize=(11, 4)):
+        for ax in (ax_x, ax_w):
+            ax.axvspan(0, 1, color="0.5", alpha=0.15, label="1 N·m on each wheel")
+            ax.set_xlabel("time [s]")
+        ax_x.plot(t1, travel1, label="Practice 1, base free")
+        ax_x.plot(t2, travel2, label="Practice 2, base free", lw=2.2)
+        ax_x.set_ylabel("distance moved [m]" if phone else "distance the base has moved [m]")
+        ax_x.legend(loc="upper left")
+        ax_w.plot(t_locked, speed_locked[:, i], label="base locked to the world")
+        ax_w.plot(t2, speed2[:, i], label="base free, wheels on the floor", lw=2.2)
+        ax_w.set_ylabel(f"{FREE_WHEEL} speed [rad/s]")
+        ax_w.legend(loc="center right")
 
 
 def axial_inertia(model, data, joint: str) -> float:
@@ -200,29 +198,29 @@ def friction_velocity(path: Path) -> None:
     node = pulses()
     t, tau, omega = node.run(model, data, WHEEL_JOINTS, duration=30.0)
     fr, free = WHEEL_JOINTS.index(FRICTION_WHEEL), WHEEL_JOINTS.index(FREE_WHEEL)
-    fig, ((ax_w, ax_z), (ax_t, ax_tz)) = figure(2, 2, figsize=(11, 5.2), sharex="col", gridspec_kw={
-        "height_ratios": [3, 1], "width_ratios": [2, 1]})
     labels = {free: f"{FREE_WHEEL}: no friction", fr: f"{FRICTION_WHEEL}: friction {design.FRICTION} N·m"}
-    for ax in (ax_w, ax_z):
-        ax.plot(t, omega[:, free], label=labels[free], color="tab:blue")
-        ax.plot(t, omega[:, fr], label=labels[fr], color="tab:orange", lw=2.2)
-        ax.set_ylabel("wheel speed [rad/s]")
-    ax_w.legend(loc="upper left")
-    ax_z.set_xlim(-0.05, 2.0)
-    ax_z.set_ylim(-1, 25)
-    ax_z.set_title("the first 2 s, closer", fontsize=11)
     up, down = (node.TORQUE - design.FRICTION) / inertia, design.FRICTION / inertia
-    ax_z.annotate(f"{node.TORQUE - design.FRICTION:.1f} N·m net:\n+{up:.1f} rad/s²", (0.55, 0.55 * up),
-                  xytext=(0.6, 3), fontsize=9, arrowprops={"arrowstyle": "-", "color": "0.4"})
     stop = node.PULSE + up * node.PULSE / down
-    ax_z.annotate(f"friction alone:\n−{down:.1f} rad/s²,\nstops at {stop:.2f} s", (1.2, up - 0.2 * down),
-                  xytext=(1.3, 12), fontsize=9, arrowprops={"arrowstyle": "-", "color": "0.4"})
-    for ax in (ax_t, ax_tz):
-        ax.plot(t, tau, color="tab:red", drawstyle="steps-post")
-        ax.set_ylabel("torque [N·m]")
-        ax.set_xlabel("time [s]")
-    ax_t.set_xticks(np.arange(0, 31, 5))
-    save(fig, path)
+    for fig, ((ax_w, ax_z), (ax_t, ax_tz)), phone in variants(
+            path, 2, 2, figsize=(11, 5.2), sharex="col",
+            gridspec_kw={"height_ratios": [3, 1], "width_ratios": [2, 1]}):
+        for ax in (ax_w, ax_z):
+            ax.plot(t, omega[:, free], label=labels[free], color="tab:blue")
+            ax.plot(t, omega[:, fr], label=labels[fr], color="tab:orange", lw=2.2)
+            ax.set_ylabel("wheel speed [rad/s]")
+        ax_w.legend(loc="upper left")
+        ax_z.set_xlim(-0.05, 2.0)
+        ax_z.set_ylim(-1, 25)
+        ax_z.set_title("the first 2 s, closer", fontsize=11)
+        ax_z.annotate(f"{node.TORQUE - design.FRICTION:.1f} N·m net:\n+{up:.1f} rad/s²", (0.55, 0.55 * up),
+                      xytext=(0.6, 3), fontsize=9, arrowprops={"arrowstyle": "-", "color": "0.4"})
+        ax_z.annotate(f"friction alone:\n−{down:.1f} rad/s²,\nstops at {stop:.2f} s", (1.2, up - 0.2 * down),
+                      xytext=(1.3, 12), fontsize=9, arrowprops={"arrowstyle": "-", "color": "0.4"})
+        for ax in (ax_t, ax_tz):
+            ax.plot(t, tau, color="tab:red", drawstyle="steps-post")
+            ax.set_ylabel("torque [N·m]")
+            ax.set_xlabel("time [s]")
+        ax_t.set_xticks(np.arange(0, 31, 5))
 
 
 MEDIA = "media/practice-2"
@@ -233,14 +231,16 @@ SIM = [PACKAGE, "sw2sim/loader.py", "sw2sim/render.py", "course/plotting.py"]
 PULSE = [PULSE_SCRIPT]
 
 FIGURES = [
-    *drawing_figures(MEDIA, "base", part_drawing, design.base, DESIGN, "Drawing of the base"),
-    *drawing_figures(MEDIA, "assembly", assembly_drawing, design.robot, DESIGN + ["course/exporter_format.py"], "Assembly"),
+    *drawing_figures(MEDIA, "base", part_drawing, design.base, DESIGN, "Drawing of the base",
+                      phone=True),
+    *drawing_figures(MEDIA, "assembly", assembly_drawing, design.robot, DESIGN + ["course/exporter_format.py"], "Assembly",
+                      phone=True),
     Figure(f"{MEDIA}/model.png", model_picture, SIM, "The model in MuJoCo"),
     Figure(f"{MEDIA}/joint_axes.png", axes_picture, SIM, "Joint axes"),
     Figure(f"{MEDIA}/wrong_axis.png", wrong_axis_picture, SIM + ["course/practices/practice_2/design.py"],
-           "A reused axis"),
+           "A reused axis", phone=True),
     Figure(f"{MEDIA}/unlocked_base.png", unlocked_picture, SIM + PULSE, "A base that is not locked"),
-    Figure(f"{MEDIA}/free_base.png", free_base_plot, SIM + PULSE + ["examples/example_1"], "Free and locked base"),
-    Figure(f"{MEDIA}/friction_velocity.png", friction_velocity, SIM + PULSE, "Wheel speed with and without friction"),
+    Figure(f"{MEDIA}/free_base.png", free_base_plot, SIM + PULSE + ["examples/example_1"], "Free and locked base", phone=True),
+    Figure(f"{MEDIA}/friction_velocity.png", friction_velocity, SIM + PULSE, "Wheel speed with and without friction", phone=True),
     Figure(f"{MEDIA}/rviz.png", rviz_picture(PACKAGE), [PACKAGE], "Practice 2's robot in RViz, as display.launch opens it"),
 ]

@@ -7,7 +7,7 @@ import numpy as np
 
 from sw2sim import load_package
 from ...media import Figure
-from ...plotting import figure, save
+from ...plotting import variants
 from ...rviz_picture import rviz_picture
 from sw2sim.render import render, save_png
 from .. import load_script
@@ -56,29 +56,28 @@ def reach(path: Path) -> None:
     model = load_package(PACKAGE).compile()
     limit = model.jnt_range[model.joint("middle_arm_joint").id][1]
     L = design.ARM_LENGTH / 1000
-    fig, ax = figure(figsize=(7, 6.2))
-    a = np.linspace(0, 2 * np.pi, 200)
-    ax.plot(L * np.cos(a), L * np.sin(a), color="0.75", lw=1, ls="--")
-    for sign, colour in ((1, "tab:orange"), (-1, "tab:purple")):
-        pivot, elbow, tip = tip_positions(model, (sign * limit, sign * limit))
-        ax.plot(elbow[0] + L * np.cos(a), elbow[1] + L * np.sin(a), color=colour, lw=0.8, ls=":", alpha=0.7)
-        ax.plot(*np.transpose([pivot, elbow, tip]), "-o", color=colour, lw=3,
-                label=f"both joints at {sign * math.degrees(limit):+.0f}°")
-        phi = math.degrees(math.atan2(tip[1] - pivot[1], tip[0] - pivot[0]))
-        ax.plot(*np.transpose([pivot, tip]), color=colour, lw=1.2, ls="--")
-        arc = np.radians(np.linspace(0, phi, 60))
-        ax.plot(0.13 * np.cos(arc), 0.13 * np.sin(arc), color=colour, lw=1.2)
-        ax.annotate(f"{phi:+.1f}°", (0.15 * math.cos(math.radians(phi / 2)), 0.15 * math.sin(math.radians(phi / 2))),
-                    color=colour, fontsize=12, va="center")
-    pivot, elbow, tip = tip_positions(model, (0, 0))
-    ax.plot(*np.transpose([pivot, elbow, tip]), "-o", color="0.35", lw=3, label="both joints at 0°")
-    ax.set_aspect("equal")
-    ax.set_xlim(-0.3, 0.55)
-    ax.set_ylim(-0.5, 0.5)
-    ax.set_xlabel("x [m]")
-    ax.set_ylabel("y [m]")
-    ax.legend(loc="lower left")
-    save(fig, path)
+    for fig, ax, phone in variants(path, figsize=(7, 6.2), phone_figsize=(5.0, 6.1)):
+        a = np.linspace(0, 2 * np.pi, 200)
+        ax.plot(L * np.cos(a), L * np.sin(a), color="0.75", lw=1, ls="--")
+        for sign, colour in ((1, "tab:orange"), (-1, "tab:purple")):
+            pivot, elbow, tip = tip_positions(model, (sign * limit, sign * limit))
+            ax.plot(elbow[0] + L * np.cos(a), elbow[1] + L * np.sin(a), color=colour, lw=0.8, ls=":", alpha=0.7)
+            ax.plot(*np.transpose([pivot, elbow, tip]), "-o", color=colour, lw=3,
+                    label=f"both joints at {sign * math.degrees(limit):+.0f}°")
+            phi = math.degrees(math.atan2(tip[1] - pivot[1], tip[0] - pivot[0]))
+            ax.plot(*np.transpose([pivot, tip]), color=colour, lw=1.2, ls="--")
+            arc = np.radians(np.linspace(0, phi, 60))
+            ax.plot(0.13 * np.cos(arc), 0.13 * np.sin(arc), color=colour, lw=1.2)
+            ax.annotate(f"{phi:+.1f}°", (0.15 * math.cos(math.radians(phi / 2)), 0.15 * math.sin(math.radians(phi / 2))),
+                        color=colour, fontsize=12, va="center")
+        pivot, elbow, tip = tip_positions(model, (0, 0))
+        ax.plot(*np.transpose([pivot, elbow, tip]), "-o", color="0.35", lw=3, label="both joints at 0°")
+        ax.set_aspect("equal")
+        ax.set_xlim(-0.3, 0.55)
+        ax.set_ylim(-0.64 if phone else -0.5, 0.5)   # on a phone the key goes under the arm
+        ax.set_xlabel("x [m]")
+        ax.set_ylabel("y [m]")
+        ax.legend(loc="lower right" if phone else "lower left")
 
 
 def pid_alone(c):
@@ -108,17 +107,18 @@ def step_speeds(enforce: bool, seconds=1.5):
 
 
 def velocity_limit(path: Path) -> None:
-    fig, axes = figure(1, 2, sharey=True, figsize=(10, 3.6))
-    for ax, enforce, title in ((axes[0], False, "PID alone"), (axes[1], True, "velocity limit enforced")):
-        t, w = step_speeds(enforce)
-        ax.plot(t, w[:, 0], label="middle_arm_joint")
-        ax.plot(t, w[:, 1], label="end_arm_joint", ls="--")
-        ax.axhline(design.VELOCITY, color="tab:red", lw=1, label="limit, 2 rad/s")
-        ax.set_title(title)
-        ax.set_xlabel("time after the step [s]")
-    axes[0].set_ylabel("joint speed [rad/s]")
-    axes[1].legend(loc="upper right")
-    save(fig, path)
+    runs = {enforce: step_speeds(enforce) for enforce in (False, True)}
+    for fig, axes, phone in variants(path, 1, 2, sharey=True, figsize=(10, 3.6)):
+        for ax, enforce, title in ((axes[0], False, "PID alone"), (axes[1], True, "velocity limit enforced")):
+            t, w = runs[enforce]
+            ax.plot(t, w[:, 0], label="middle_arm_joint")
+            ax.plot(t, w[:, 1], label="end_arm_joint", ls="--")
+            ax.axhline(design.VELOCITY, color="tab:red", lw=1, label="limit, 2 rad/s")
+            ax.set_title(title)
+            ax.set_xlabel("time after the step [s]")
+            if phone or not enforce:
+                ax.set_ylabel("joint speed [rad/s]")
+        axes[1].legend(loc="upper right")
 
 
 def random_run(seconds=30, seed=4):
@@ -131,21 +131,22 @@ def random_run(seconds=30, seed=4):
 def setpoints(path: Path) -> None:
     arm = random_run()
     t = arm.times()
-    fig, axes = figure(2, 2, sharex=True, figsize=(11, 5.4), gridspec_kw={"height_ratios": [3, 1.4]})
-    for col, name in enumerate(arm.controllers):
-        top, bottom = axes[0, col], axes[1, col]
-        top.plot(t, arm.states(name, "set_point"), drawstyle="steps-post", color="tab:red", label="set point")
-        top.plot(t, arm.states(name, "process_value"), color="tab:blue", label="position")
-        top.axhline(design.LIMIT, color="0.6", lw=0.8, ls=":")
-        top.axhline(-design.LIMIT, color="0.6", lw=0.8, ls=":")
-        top.set_title(name)
-        bottom.plot(t, arm.states(name, "error"), color="tab:green")
-        bottom.set_xlabel("time [s]")
-        bottom.set_xticks(np.arange(0, t[-1] + 1, 5))
-    axes[0, 0].set_ylabel("angle [rad]")
-    axes[1, 0].set_ylabel("error [rad]")
-    axes[0, 1].legend(loc="lower right")
-    save(fig, path)
+    for fig, axes, phone in variants(path, 2, 2, sharex=True, figsize=(11, 5.4),
+                                     gridspec_kw={"height_ratios": [3, 1.4]}):
+        for col, name in enumerate(arm.controllers):
+            top, bottom = axes[0, col], axes[1, col]
+            top.plot(t, arm.states(name, "set_point"), drawstyle="steps-post", color="tab:red", label="set point")
+            top.plot(t, arm.states(name, "process_value"), color="tab:blue", label="position")
+            top.axhline(design.LIMIT, color="0.6", lw=0.8, ls=":")
+            top.axhline(-design.LIMIT, color="0.6", lw=0.8, ls=":")
+            top.set_title(name)
+            bottom.plot(t, arm.states(name, "error"), color="tab:green")
+            bottom.set_xlabel("time [s]")
+            bottom.set_xticks(np.arange(0, t[-1] + 1, 5))
+            if phone or col == 0:
+                top.set_ylabel("angle [rad]")
+                bottom.set_ylabel("error [rad]")
+        axes[0, 1].legend(loc="lower right")
 
 
 MEDIA = "media/practice-3"
@@ -155,12 +156,15 @@ SIM = [PACKAGE, "sw2sim/loader.py", "sw2sim/ros_control.py", "sw2sim/render.py",
 
 FIGURES = [
     *drawing_figures(MEDIA, "base", part_drawing, design.base, DESIGN, "Drawing of the base"),
-    *drawing_figures(MEDIA, "middle_arm", part_drawing, design.middle_arm, DESIGN, "Drawing of the middle arm"),
-    *drawing_figures(MEDIA, "end_arm", part_drawing, design.end_arm, DESIGN, "Drawing of the end arm"),
-    *drawing_figures(MEDIA, "assembly", assembly_drawing, design.robot, DESIGN + ["course/exporter_format.py"], "Assembly"),
+    *drawing_figures(MEDIA, "middle_arm", part_drawing, design.middle_arm, DESIGN, "Drawing of the middle arm",
+                      phone=True),
+    *drawing_figures(MEDIA, "end_arm", part_drawing, design.end_arm, DESIGN, "Drawing of the end arm",
+                      phone=True),
+    *drawing_figures(MEDIA, "assembly", assembly_drawing, design.robot, DESIGN + ["course/exporter_format.py"], "Assembly",
+                      phone=True),
     Figure(f"{MEDIA}/model.png", model_picture, SIM, "The arm in MuJoCo"),
-    Figure(f"{MEDIA}/reach.png", reach, SIM, "The arm's reach at its limits"),
-    Figure(f"{MEDIA}/velocity_limit.png", velocity_limit, SIM, "Joint speed with and without the limit"),
-    Figure(f"{MEDIA}/random_setpoints.png", setpoints, SIM, "Set point, position and error"),
+    Figure(f"{MEDIA}/reach.png", reach, SIM, "The arm's reach at its limits", phone=True),
+    Figure(f"{MEDIA}/velocity_limit.png", velocity_limit, SIM, "Joint speed with and without the limit", phone=True),
+    Figure(f"{MEDIA}/random_setpoints.png", setpoints, SIM, "Set point, position and error", phone=True),
     Figure(f"{MEDIA}/rviz.png", rviz_picture(PACKAGE), [PACKAGE], "The arm in RViz, as display.launch opens it"),
 ]

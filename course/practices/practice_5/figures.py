@@ -7,7 +7,7 @@ import numpy as np
 
 from sw2sim import load_package
 from ...media import Figure
-from ...plotting import figure, save
+from ...plotting import variants
 from ...rviz_picture import rviz_picture
 from sw2sim.render import render, save_png
 from .. import load_script
@@ -81,20 +81,25 @@ def _predicted(ax, radius, colour="0.35", label="predicted circle"):
 
 
 def path_vs_circle(path: Path) -> None:
-    fig, ax = figure(figsize=(7.6, 6.4))
+    runs = []
     for steer, colour in ((0.15, "tab:green"), (STEER, "tab:blue"), (0.5, "tab:purple")):
         car, _ = turn(seconds=16.0, steer=steer)
-        measured, predicted = steady_radius(car)
         _, x, y, *_ = car.states()
-        ax.plot(x, y, color=colour, lw=2.4, alpha=0.75,
-                label=f"driven, {math.degrees(steer):.1f}°: R = {measured:.3f} m")
-        _predicted(ax, predicted, "black", f"l / tan φ = {predicted:.3f} m")
-    ax.set_aspect("equal")
-    ax.set_xlabel("x [m]")
-    ax.set_ylabel("y [m]")
-    ax.legend(loc="upper left", bbox_to_anchor=(1.0, 1.0), fontsize=9,
-              title="rear axle centre, 0.5 m/s")
-    save(fig, path)
+        runs.append((steer, colour, x, y, *steady_radius(car)))
+    for fig, ax, phone in variants(path, figsize=(7.6, 6.4), phone_figsize=(5.0, 6.6)):
+        for steer, colour, x, y, measured, predicted in runs:
+            ax.plot(x, y, color=colour, lw=2.4, alpha=0.75,
+                    label=f"driven, {math.degrees(steer):.1f}°: R = {measured:.3f} m")
+            _predicted(ax, predicted, "black", f"l / tan φ = {predicted:.3f} m")
+        ax.set_aspect("equal")
+        ax.set_xlabel("x [m]")
+        ax.set_ylabel("y [m]")
+        if phone:   # no room beside the plot: the key goes under it
+            ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.12), fontsize=9,
+                      title="rear axle centre, 0.5 m/s")
+        else:
+            ax.legend(loc="upper left", bbox_to_anchor=(1.0, 1.0), fontsize=9,
+                      title="rear axle centre, 0.5 m/s")
 
 
 def sweep(seconds=12.0):
@@ -120,7 +125,14 @@ def knuckle_angles(path: Path) -> None:
     g = car.geometry
     grid = np.linspace(-design.STEER_LIMIT, design.STEER_LIMIT, 200)
     eq4 = np.array([script().knuckle_angles(p, g.wheelbase, g.track) for p in grid])
-    fig, (ax, err) = figure(1, 2, figsize=(12, 4.6), gridspec_kw={"width_ratios": [1.3, 1]})
+    for fig, (ax, err), phone in variants(path, 1, 2, figsize=(12, 4.6),
+                                          gridspec_kw={"width_ratios": [1.3, 1]}):
+        _knuckle_panels(ax, err, phone, grid, eq4, t[keep], phi, left, right,
+                        left_sp[keep] - left, right_sp[keep] - right)
+
+
+def _knuckle_panels(ax, err, phone, grid, eq4, t, phi, left, right, left_error, right_error):
+    """Knuckle angles against the centre angle, and the commanded minus measured angles."""
     deg = np.degrees
     ax.plot(deg(grid), deg(grid), color="0.6", ls=":", label="parallel steering (both = φ)")
     ax.plot(deg(grid), deg(eq4[:, 0]), color="tab:blue", lw=1.2, label="left, Equation 4")
@@ -134,26 +146,33 @@ def knuckle_angles(path: Path) -> None:
     ax.set_xlabel("centre steering angle φ, measured [°]")
     ax.set_ylabel("knuckle angle [°]")
     ax.legend(loc="lower right", fontsize=9)
-    err.plot(t[keep], deg(left_sp[keep] - left), color="tab:blue", label="left")
-    err.plot(t[keep], deg(right_sp[keep] - right), color="tab:orange", label="right")
+    err.plot(t, deg(left_error), color="tab:blue", label="left")
+    err.plot(t, deg(right_error), color="tab:orange", label="right")
     err.axhspan(-0.5, 0.5, color="tab:green", alpha=0.1, zorder=0, label="±0.5°")
     err.set_ylim(-0.6, 0.6)
     err.set_xlabel("time [s]")
     err.set_ylabel("commanded − measured [°]")
     err.legend(loc="upper right", ncols=3, fontsize=9)
-    save(fig, path)
 
 
 def not_ideal(path: Path) -> None:
-    fig, (ax, bars) = figure(1, 2, figsize=(11, 5.4), gridspec_kw={"width_ratios": [1, 1.1]})
-    rows = []
+    rows, paths = [], []
     predicted = None
     for (label, options), colour in zip(CASES.items(), COLOURS):
         car, slip = turn(**options)
         measured, predicted = steady_radius(car)
         _, x, y, *_ = car.states()
-        ax.plot(x, y, color=colour, lw=2.2, label=label)
+        paths.append((x, y, colour, label))
         rows.append((label, 100 * (measured / predicted - 1), 1000 * slip))
+    for fig, (ax, bars), _ in variants(path, 1, 2, figsize=(11, 5.4),
+                                       gridspec_kw={"width_ratios": [1, 1.1]}):
+        _not_ideal_panels(ax, bars, paths, rows, predicted)
+
+
+def _not_ideal_panels(ax, bars, paths, rows, predicted):
+    """The driven paths against the predicted circle, and each case's radius error and slip."""
+    for x, y, colour, label in paths:
+        ax.plot(x, y, color=colour, lw=2.2, label=label)
     _predicted(ax, predicted, "black", f"predicted, R = {predicted:.3f} m")
     ax.set_aspect("equal")
     ax.set_xlabel("x [m]")
@@ -171,7 +190,6 @@ def not_ideal(path: Path) -> None:
     bars.set_ylabel("radius error [%] / wheel slip [mm/s]")
     bars.set_ylim(0, 50)
     bars.legend(loc="upper left")
-    save(fig, path)
 
 
 MEDIA = "media/practice-5"
@@ -180,18 +198,20 @@ DESIGN = ["course/practices/practice_5/design.py", "course/parts.py", "course/dr
 SIM = [PACKAGE, "sw2sim/loader.py", "sw2sim/ros_control.py", "sw2sim/render.py", "course/plotting.py"]
 
 FIGURES = [
-    *drawing_figures(MEDIA, "chassis", part_drawing, design.chassis, DESIGN, "Drawing of the chassis"),
+    *drawing_figures(MEDIA, "chassis", part_drawing, design.chassis, DESIGN, "Drawing of the chassis",
+                      phone=True),
     *drawing_figures(MEDIA, "knuckle", part_drawing, design.knuckle, DESIGN, "Drawing of a steering knuckle"),
     *drawing_figures(MEDIA, "wheel", part_drawing, design.wheel, DESIGN, "Drawing of a wheel"),
     *drawing_figures(MEDIA, "steering_link", part_drawing, design.steering_link, DESIGN, "Drawing of the steering link"),
-    *drawing_figures(MEDIA, "assembly", assembly_drawing, design.robot, DESIGN + ["course/exporter_format.py"], "Assembly"),
+    *drawing_figures(MEDIA, "assembly", assembly_drawing, design.robot, DESIGN + ["course/exporter_format.py"], "Assembly",
+                      phone=True),
     Figure(f"{MEDIA}/model.png", model_picture, SIM, "The car in MuJoCo"),
-    Figure(f"{MEDIA}/path_vs_circle.png", path_vs_circle, SIM, "Driven paths against the predicted circles"),
-    Figure(f"{MEDIA}/knuckle_angles.png", knuckle_angles, SIM, "Knuckle angles against Equation 4"),
-    Figure(f"{MEDIA}/not_ideal.png", not_ideal, SIM, "Equal speeds and parallel steering"),
+    Figure(f"{MEDIA}/path_vs_circle.png", path_vs_circle, SIM, "Driven paths against the predicted circles", phone=True),
+    Figure(f"{MEDIA}/knuckle_angles.png", knuckle_angles, SIM, "Knuckle angles against Equation 4", phone=True),
+    Figure(f"{MEDIA}/not_ideal.png", not_ideal, SIM, "Equal speeds and parallel steering", phone=True),
     Figure(f"{MEDIA}/rviz.png", rviz_picture(PACKAGE), [PACKAGE], "The vehicle in RViz, as display.launch opens it"),
 ]
 
 from ...ackermann_diagram import draw as turning_centre  # noqa: E402
 FIGURES.append(Figure(f"{MEDIA}/turning_centre.png", turning_centre, ["course/practices/practice_5/design.py"],
-                      "The turning centre and Equation 4's triangles"))
+                      "The turning centre and Equation 4's triangles", phone=True))

@@ -1,5 +1,6 @@
-"""Every figure's lettering is at least 10 px high where a page shows it, on a laptop
-(1366 × 900): measured on the picture as the browser lays it out.
+"""Every figure's lettering is large enough where a page shows it: at least 10 px high on
+a laptop (1366 × 900), and at least 9 px on phones 360 and 390 px wide, measured on the
+picture as the browser lays it out.
 
 - A drawing (SVG): its smallest font size, scaled by the width the page gives the picture
   over its viewBox's width. The pages show the views cropped close (course/drawing); the
@@ -7,6 +8,14 @@
 - A plot (PNG): its smallest text in image pixels, which course/plotting.py records in the
   file, scaled by the shown width over the image's width.
 Pictures of the simulation carry no text and are not measured.
+
+On a phone a figure with lettering shows its phone variant (course/phone.py), which the
+page offers in a <picture> (_plugins/phone_figures.rb); the test measures the file the
+browser chose. Three figures are pictures of the exporter's windows drawn 1:1
+(course/dialog_schematics.py): a window 760 px wide cannot be laid out again for a phone
+and still look like the window the reader has open, so on a phone their lettering is as
+small as the window's on a phone's screen, and a tap opens them at their own size
+(test_lightbox.py). They are the only figures excused, and the test says so.
 """
 
 from __future__ import annotations
@@ -20,23 +29,59 @@ from course.plotting import TEXT_KEY
 
 LAPTOP = {"width": 1366, "height": 900}
 READABLE_PX = 10.0
+PHONES = [{"width": 360, "height": 780}, {"width": 390, "height": 844}]
+READABLE_ON_A_PHONE_PX = 9.0
+# Pictures of the exporter's windows, 1:1: too small on a phone, opened at their own size
+# on a tap (see the module's docstring).
+WINDOWS = {"/media/practice-1/exporter_panel.svg", "/media/practice-1/exporter_joints.svg",
+           "/media/practice-1/exporter_links.svg"}
 SVG = "{http://www.w3.org/2000/svg}"
+CSS_RULE = re.compile(r"([^{}]+)\{([^}]*)\}")
 
-FIGURES = """() => Array.from(document.querySelectorAll('.page-body img'), img => {
-    return {src: img.getAttribute('src'), shown: img.getBoundingClientRect().width};
-}).filter(f => f.src.includes('/media/'))"""
+# Every figure of the page's body, loaded (lazy ones too) so that the browser has chosen
+# which file to show: its src, the file shown and the width it is shown at.
+FIGURES = """async () => {
+    const images = Array.from(document.querySelectorAll('.page-body img'))
+        .filter(img => img.getAttribute('src').includes('/media/'));
+    images.forEach(img => { img.loading = 'eager'; });
+    await Promise.all(images.map(img => img.decode().catch(() => null)));
+    return images.map(img => ({src: img.getAttribute('src'), file: new URL(img.currentSrc).pathname,
+                               shown: img.getBoundingClientRect().width}));
+}"""
+
+
+def _declarations(text: str) -> dict[str, str]:
+    return {k.strip(): v.strip() for k, v in (part.split(":", 1) for part in text.split(";") if ":" in part)}
+
+
+def _style_sheet(root) -> dict[str, str]:
+    """font-size by selector from the SVG's <style> (the schematics set their lettering
+    there: `text { font-size: 11.5px }`, `text.title { ... }`)."""
+    sizes = {}
+    for style in root.iter(f"{SVG}style"):
+        for selectors, body in CSS_RULE.findall(style.text or ""):
+            size = _declarations(body).get("font-size")
+            for selector in selectors.split(","):
+                if size:
+                    sizes[selector.strip()] = size
+    return sizes
 
 
 def smallest_svg_text(path) -> tuple[float, float]:
-    """(viewBox width, smallest font size) of an SVG figure."""
+    """(viewBox width, smallest font size) of an SVG figure. A text's size is, first found:
+    its style attribute's, its class's rule in <style>, the rule for all texts, its
+    font-size attribute, its parent's."""
     root = ET.parse(path).getroot()
     width = float(root.attrib["viewBox"].split()[2])
+    rules = _style_sheet(root)
     sizes: list[float] = []
 
     def walk(element, size):
-        style = dict(part.split(":", 1) for part in element.attrib.get("style", "").split(";")
-                     if ":" in part)
-        given = style.get("font-size", element.attrib.get("font-size"))
+        tag = element.tag.removeprefix(SVG)
+        classes = element.attrib.get("class", "").split()
+        given = (_declarations(element.attrib.get("style", "")).get("font-size")
+                 or next((rules[f"{tag}.{c}"] for c in classes if f"{tag}.{c}" in rules), None)
+                 or rules.get(tag) or element.attrib.get("font-size"))
         size = float(re.sub(r"px$", "", given.strip())) if given else size
         if element.tag == f"{SVG}text" and "".join(element.itertext()).strip():
             sizes.append(size)
@@ -47,31 +92,77 @@ def smallest_svg_text(path) -> tuple[float, float]:
     return width, min(sizes, default=float("inf"))
 
 
+def smallest_text_shown(site, figure) -> tuple[str, float] | None:
+    """(kind, height in CSS px of the smallest text) of a figure as the page shows it, or
+    None for a picture without text."""
+    file = site.root / figure["file"].lstrip("/")
+    if file.suffix == ".svg":
+        width, size = smallest_svg_text(file)
+        return "svg", size * figure["shown"] / width
+    image = Image.open(file)
+    if TEXT_KEY not in image.info:
+        return None   # a picture of the simulation: no text
+    return "plot", float(image.info[TEXT_KEY]) * figure["shown"] / image.width
+
+
+def pages_with_figures(site) -> list[str]:
+    return [path for path in site.pages
+            if 'src="/media/' in (site.root / path.strip("/") / "index.html").read_text(encoding="utf-8")]
+
+
 def test_figure_text_is_readable_at_the_page_width(browser_page, site):
     page = browser_page.page
     page.set_viewport_size(LAPTOP)
     measured, small = {"svg": 0, "plot": 0}, []
     try:
-        for path in site.pages:
+        for path in pages_with_figures(site):
             browser_page.visit(path)
             for figure in page.evaluate(FIGURES):
-                file = site.root / re.sub(r"^/", "", figure["src"])
-                shown = figure["shown"]
-                if file.suffix == ".svg":
-                    width, size = smallest_svg_text(file)
-                    px, kind = size * shown / width, "svg"
-                else:
-                    image = Image.open(file)
-                    if TEXT_KEY not in image.info:
-                        continue   # a picture of the simulation: no text
-                    px, kind = float(image.info[TEXT_KEY]) * shown / image.width, "plot"
+                found = smallest_text_shown(site, figure)
+                if found is None:
+                    continue
+                kind, px = found
                 measured[kind] += 1
                 if px < READABLE_PX:
-                    small.append(f"{path}: {figure['src']} shown {shown:.0f} px wide: "
+                    small.append(f"{path}: {figure['file']} shown {figure['shown']:.0f} px wide: "
                                  f"smallest text {px:.1f} px")
     finally:
         page.set_viewport_size({"width": 1280, "height": 800})
     assert measured["svg"] >= 20 and measured["plot"] >= 15, measured
+    assert not small, "\n".join(small)
+
+
+def test_on_a_phone_every_figure_shows_text_at_least_9_px_high(phone, site):
+    """At 390 and 360 px every figure with lettering shows it at least 9 px high: the
+    plots' and the drawings' phone variants where the figure has one (all the plots, the
+    drawings wider than a phone's column), the figure itself where it needs none. Only the
+    exporter's windows are excused (see the module's docstring)."""
+    page = phone.page
+    measured, variants, small, excused = 0, set(), [], set()
+    try:
+        for size in PHONES:
+            page.set_viewport_size(size)
+            for path in pages_with_figures(site):
+                phone.visit(path)
+                for figure in page.evaluate(FIGURES):
+                    found = smallest_text_shown(site, figure)
+                    if found is None:
+                        continue
+                    measured += 1
+                    if figure["file"] != figure["src"]:
+                        variants.add(figure["file"])
+                    px = found[1]
+                    if figure["src"] in WINDOWS:
+                        excused.add(figure["src"])
+                    elif px < READABLE_ON_A_PHONE_PX:
+                        small.append(f"{size['width']} px, {path}: {figure['file']} shown "
+                                     f"{figure['shown']:.0f} px wide: smallest text {px:.1f} px")
+    finally:
+        page.set_viewport_size(PHONES[-1])
+    assert measured >= 2 * 35, measured
+    assert all("-phone." in file for file in variants), variants
+    assert len(variants) >= 25, f"phone variants shown: {sorted(variants)}"
+    assert excused == WINDOWS, f"excused: {sorted(excused)}; expected {sorted(WINDOWS)}"
     assert not small, "\n".join(small)
 
 

@@ -1,0 +1,67 @@
+# frozen_string_literal: true
+
+# A figure with lettering has a phone variant beside it, drawn by the same code for a
+# narrow column (course/phone.py): media/x.png and media/x-phone.png, media/y.svg and
+# media/y-phone.svg. Where the pages' text column is narrower than 640 px, the figure laid
+# out for 736 px would have its lettering under 9 px high; there the phone variant is
+# shown instead. Page authors write the figure as any image,
+#
+#     ![Knuckle angles against the centre angle](/media/practice-5/knuckle_angles.png)
+#
+# and this hook turns every <img> whose file has a phone variant into
+#
+#     <picture class="figure-picture">
+#       <source media="(max-width: 41.99rem), ..." srcset="/media/.../knuckle_angles-phone.png"
+#               width="650" height="975">
+#       <img src="/media/.../knuckle_angles.png" alt="..." width="1560" height="598" ...>
+#     </picture>
+#
+# The <img> keeps everything it had: its alt text, its src (the figure as wider windows
+# show it, and what the enlarged view opens: assets/js/site.js) and the size
+# lazy_images.rb reads from its file; the <source> carries the phone variant's own size,
+# so that the browser reserves the right space before the picture arrives.
+module Sw2simSite
+  module PhoneFigures
+    SUFFIX = "-phone"
+    # Windows whose text column is narrower than 640 px (assets/css/main.css): below 60rem
+    # the column is the window less 2rem of margins; from 60rem the sidebar and the page's
+    # margins take 22rem, so the column is narrower than 640 px up to 62rem.
+    NARROW = "(max-width: 41.99rem), (min-width: 60rem) and (max-width: 61.99rem)"
+    IMG = /<img\b[^>]*>/i.freeze
+    SRC = /\bsrc="([^"]+)"/i.freeze
+
+    module_function
+
+    def serve(html, site_root, baseurl)
+      html.gsub(IMG) do |tag|
+        src = tag[SRC, 1]
+        phone_src = src && phone_variant(src)
+        file = phone_src && LazyImages.local_file(phone_src, site_root, baseurl)
+        next tag unless file && File.file?(file)
+
+        size = LazyImages.size_of(file)
+        dimensions = size ? %( width="#{size[0]}" height="#{size[1]}") : ""
+        %(<picture class="figure-picture"><source media="#{NARROW}" srcset="#{phone_src}"#{dimensions}>) +
+          "#{tag}</picture>"
+      end
+    end
+
+    # The phone variant's address of a figure under /media/ (nil for any other image).
+    def phone_variant(src)
+      path, rest = src.split(/(?=[?#])/, 2)
+      return nil unless path.include?("/media/") && path =~ /\.(png|svg)\z/i
+      return nil if path.end_with?("#{SUFFIX}.png", "#{SUFFIX}.svg")
+
+      path.sub(/(\.\w+)\z/, "#{SUFFIX}\\1") + rest.to_s
+    end
+  end
+end
+
+# After rendering, as lazy_images.rb: the src attributes carry the baseurl by then
+# (site_links.rb), and so does the phone variant's address made from them.
+Jekyll::Hooks.register [:pages, :documents], :post_render do |page|
+  next unless page.output_ext == ".html"
+
+  site = page.site
+  page.output = Sw2simSite::PhoneFigures.serve(page.output, site.source, site.config["baseurl"])
+end
