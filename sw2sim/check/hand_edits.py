@@ -14,7 +14,7 @@ import json
 import re
 
 from .. import archive
-from ..edits import FOLDER, MANIFEST
+from ..edits import FOLDER, MANIFEST, copy_of
 from .context import display
 from .findings import ADVICE, WARNING, rule
 
@@ -85,6 +85,6 @@ def _saved(folder, rel: str, current) -> bool:
     """Whether hand_edits/ holds this file as it is now."""
     try:
         listed = rel in json.loads((folder / MANIFEST).read_text())["files"]
-        return listed and (folder / rel).read_bytes() == current.read_bytes()
+        return listed and copy_of(folder, rel).read_bytes() == current.read_bytes()
     except (OSError, ValueError, KeyError, TypeError):
         return False

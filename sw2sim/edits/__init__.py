@@ -24,6 +24,7 @@ from ..package import Package, find_package
 from .urdf_carry import carry
 
 FOLDER = "hand_edits"
+SUFFIX = ".saved"   # on every saved copy (copy_of)
 MANIFEST = "manifest.json"
 # A file edited this long after the re-export wrote the URDF was edited by hand since.
 EDITED_AFTER_S = 60.0
@@ -75,7 +76,8 @@ What this folder is
 ===================
 Copies of the files of the package {name} that the SolidWorks-to-URDF exporter writes
 (the URDF and its CSV, package.xml, CMakeLists.txt, the joint-names YAML and the two
-launch files), saved with their hand edits by `sw2sim edits save`. The exporter never
+launch files), saved with their hand edits by `sw2sim edits save`, each name ending in
+.saved so that ROS never takes a copy for the package's own file. The exporter never
 writes this folder, so the copies survive exporting the assembly again.
 
 After a re-export, put the hand edits back with:
@@ -98,15 +100,16 @@ def save(path, *, force: bool = False) -> list[str]:
     folder = package.root / FOLDER
     files = exporter_files(package)
     old = _manifest(folder)
-    if old and not force and (folder / old["urdf"]).is_file() and old["urdf"] in files:
-        missing = carry(_text(folder / old["urdf"]), _text(package.root / old["urdf"])).carried
+    if old and not force and copy_of(folder, old["urdf"]).is_file() and old["urdf"] in files:
+        missing = carry(_text(copy_of(folder, old["urdf"])),
+                        _text(package.root / old["urdf"])).carried
         if missing:
             raise WouldLoseEdits(missing)
     for rel in (old or {}).get("files", {}):
-        if rel not in files and (folder / rel).is_file():
-            (folder / rel).unlink()   # a file the package no longer has
+        if rel not in files and copy_of(folder, rel).is_file():
+            copy_of(folder, rel).unlink()   # a file the package no longer has
     for rel in files:
-        target = folder / rel
+        target = copy_of(folder, rel)
         target.parent.mkdir(parents=True, exist_ok=True)
         shutil.copyfile(package.root / rel, target)
     manifest = {"saved_by": "sw2sim edits save", "package": package.name, "urdf": files[0],
@@ -114,6 +117,13 @@ def save(path, *, force: bool = False) -> list[str]:
     (folder / MANIFEST).write_text(json.dumps(manifest, indent=2) + "\n")
     (folder / "README.txt").write_text(readme(package.name))
     return files
+
+
+def copy_of(folder: Path, rel: str) -> Path:
+    """Where the saved copy of the package's file `rel` is: under FOLDER, its name ending
+    in SUFFIX, so that no tool takes it for the package's own file (roslaunch looks for
+    `roslaunch PKG gazebo.launch` in every folder of the package and refuses two)."""
+    return folder / (rel + SUFFIX)
 
 
 def _manifest(folder: Path) -> dict | None:
@@ -142,7 +152,7 @@ def restore(path, *, force: bool = False) -> Restored:
     if manifest is None:
         raise NothingSaved(f"{package.root / FOLDER / MANIFEST} is missing")
     urdf = manifest["urdf"]
-    saved_urdf = _text(folder / urdf)
+    saved_urdf = _text(copy_of(folder, urdf))
     new_urdf = _text(package.root / urdf) \
         if (package.root / urdf).is_file() else None
     if new_urdf is None:
@@ -151,13 +161,13 @@ def restore(path, *, force: bool = False) -> Restored:
     templates = [rel for rel in manifest["files"] if rel != urdf and not rel.endswith(".csv")]
     edited = [rel for rel in templates
               if (package.root / rel).is_file()
-              and (package.root / rel).read_bytes() != (folder / rel).read_bytes()
+              and (package.root / rel).read_bytes() != copy_of(folder, rel).read_bytes()
               and (package.root / rel).stat().st_mtime > exported + EDITED_AFTER_S]
     if edited and not force:
         raise EditedSince(edited)
     result = Restored()
     for rel in templates:
-        current, copy = package.root / rel, folder / rel
+        current, copy = package.root / rel, copy_of(folder, rel)
         if current.is_file() and current.read_bytes() == copy.read_bytes():
             result.done.append(f"unchanged {rel}")
             continue

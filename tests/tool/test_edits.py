@@ -128,7 +128,7 @@ def test_saving_a_bare_re_export_over_the_saved_edits_is_refused(edited, capsys)
     assert run("save", edited) == 1
     err = capsys.readouterr().err
     assert "link world" in err and f"sw2sim edits restore {edited}" in err
-    assert WORLD.split("  <joint")[0] in text(edited / "hand_edits" / "urdf" / urdf(edited).name)
+    assert WORLD.split("  <joint")[0] in text(edited / "hand_edits" / "urdf" / (urdf(edited).name + ".saved"))
 
 
 def test_a_file_edited_after_the_re_export_is_not_overwritten(edited, capsys):
