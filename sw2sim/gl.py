@@ -10,7 +10,9 @@ makes the choice before anything imports MuJoCo:
   the window system's OpenGL (`MUJOCO_GL=egl` would stop MuJoCo from starting there).
 
 `sw2sim view` draws in a window, so it asks for GLFW (`for_window`) before it imports
-MuJoCo, whatever was chosen for pictures.
+MuJoCo, whatever was chosen for pictures. A process that never draws turns drawing off
+(`without_drawing`, the ROS stand-in's simulation node; `not_drawing` around the command
+line's own `sw2sim check`): MuJoCo then loads no OpenGL library at all.
 """
 
 from __future__ import annotations
@@ -18,7 +20,8 @@ from __future__ import annotations
 import ctypes.util
 import os
 import sys
-from collections.abc import Callable, MutableMapping
+from collections.abc import Callable, Iterator, MutableMapping
+from contextlib import contextmanager
 
 
 def platform_for(environ: MutableMapping[str, str], system: str = sys.platform,
@@ -55,3 +58,23 @@ def without_drawing(environ: MutableMapping[str, str] | None = None) -> str:
     environ = os.environ if environ is None else environ
     environ["MUJOCO_GL"] = "disable"
     return "disable"
+
+
+@contextmanager
+def not_drawing(environ: MutableMapping[str, str] | None = None) -> Iterator[None]:
+    """`MUJOCO_GL=disable` while the block runs, and the value before it put back after.
+
+    MuJoCo imported inside the block loads no OpenGL library (OSMesa's start-up is a fifth
+    of a second of CPU) and cannot draw for the rest of the process: use it around work
+    that ends the process, such as the `sw2sim check` command. Processes started after
+    the block get the platform chosen for drawing again."""
+    environ = os.environ if environ is None else environ
+    before = environ.get("MUJOCO_GL")
+    environ["MUJOCO_GL"] = "disable"
+    try:
+        yield
+    finally:
+        if before is None:
+            environ.pop("MUJOCO_GL", None)
+        else:
+            environ["MUJOCO_GL"] = before

@@ -103,6 +103,7 @@ class Context:
         self.path = Path(source)
         self.report = Report(path=str(source))
         self._meshes: dict[Path, object] = {}
+        self._mesh_files: dict[str, Path | None] = {}
         self._files: list[Path] | None = None
 
     # -- reporting -------------------------------------------------------------------
@@ -167,11 +168,15 @@ class Context:
         filename = mesh.get("filename")
         if not filename or self.package is None:
             return None
-        try:
-            return self.package.resolve_mesh(in_folder_given(filename, self.package.name),
-                                             mesh.sourceline)
-        except (LoadError, OSError, ValueError, RuntimeError):  # RuntimeError: a symlink loop
-            return None
+        # Each rule asks again for each mesh; resolving follows links on disk every time.
+        if filename not in self._mesh_files:
+            try:
+                found = self.package.resolve_mesh(in_folder_given(filename, self.package.name),
+                                                  mesh.sourceline)
+            except (LoadError, OSError, ValueError, RuntimeError):  # RuntimeError: a link loop
+                found = None
+            self._mesh_files[filename] = found
+        return self._mesh_files[filename]
 
     def mesh(self, mesh: etree._Element):
         """The mesh a <mesh> element names as a `trimeshes.Mesh` in metres (scale applied),

@@ -115,8 +115,10 @@ def _shape_mesh(ctx, link, shape) -> Mesh | None:
         key = (ctx.mesh_file(shape), shape.get("scale"))
         if key not in cache:
             mesh = ctx.mesh(shape)
-            if mesh is not None and np.isfinite(mesh.vertices).all():
-                mesh = mesh.copy()
+            # One beyond MuJoCo's limit is not measured (below): merging it would be wasted.
+            if mesh is not None and len(mesh.faces) <= STL_FACE_LIMIT \
+                    and np.isfinite(mesh.vertices).all():
+                mesh = Mesh(mesh.vertices, mesh.faces)   # merging makes new arrays: no copy
                 mesh.merge_vertices()
             else:
                 mesh = None

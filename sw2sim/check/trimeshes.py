@@ -1,10 +1,14 @@
 """Triangle meshes as the checks need them, without a mesh library's start-up cost.
 
-`sw2sim check` must answer within a second, and importing a full mesh library (with the
-scientific stack behind it) took most of that. The checks only need vertices and faces,
-moved, scaled and merged; the primitives of URDF as closed meshes; and binary STL, which
-is what the exporter writes. `read` decodes binary STL here and hands anything else (text
-STL, OBJ, other formats) to trimesh, imported only then.
+`sw2sim check` must answer within half a second, and importing a full mesh library (with
+the scientific stack behind it) takes seconds. The checks only need vertices and faces,
+moved, scaled and merged; the primitives of URDF as closed meshes; and the simple formats
+exporters write: binary STL (the SolidWorks exporter's), text STL and OBJ of triangles.
+`read` decodes those here, and hands anything else (COLLADA, PLY, glTF, an OBJ of quads,
+materials or negative indices, a file these readers do not fully understand) to trimesh,
+imported only then. What the readers here accept, trimesh reads to the same triangles
+(tests/tool/check/test_mesh_readers.py compares them), so a check's verdict never depends
+on which of them read the file.
 """
 
 from __future__ import annotations
@@ -55,35 +59,178 @@ class Mesh:
         """Make vertices that share their coordinates (to MERGE_DIGITS) one vertex."""
         if not len(self.vertices):
             return
+        # np.unique(keys, axis=0) gives the same vertices in the same order, but sorts the
+        # rows as records, five times slower than this stable sort on the three columns.
         keys = np.round(self.vertices, MERGE_DIGITS)
-        unique, first, inverse = np.unique(keys, axis=0, return_index=True, return_inverse=True)
-        self.vertices = self.vertices[first]
-        self.faces = inverse.reshape(-1)[self.faces]
+        order = np.lexsort((keys[:, 2], keys[:, 1], keys[:, 0]))
+        ordered = keys[order]
+        starts = np.empty(len(order), dtype=bool)
+        starts[0] = True
+        np.any(ordered[1:] != ordered[:-1], axis=1, out=starts[1:])
+        inverse = np.empty(len(order), dtype=np.int64)
+        inverse[order] = np.cumsum(starts) - 1
+        self.vertices = self.vertices[order[starts]]
+        self.faces = inverse[self.faces]
+
+
+class _NotSimple(Exception):
+    """The file is not in the simple form the readers here understand: trimesh reads it."""
 
 
 def read(path: str | Path) -> Mesh | None:
     """The mesh in a file, unmerged, or None when it holds no triangles or cannot be read."""
     path = Path(path)
-    mesh = _binary_stl(path) if path.suffix.lower() == ".stl" else None
-    if mesh is None:
+    reader = _READERS.get(path.suffix.lower())
+    if reader is None:
         mesh = _with_trimesh(path)
+    else:
+        try:
+            mesh = reader(path.read_bytes())
+        except OSError:
+            return None
+        except _NotSimple:
+            mesh = _with_trimesh(path)
     return mesh if mesh is not None and len(mesh.faces) else None
 
 
-def _binary_stl(path: Path) -> Mesh | None:
-    """A binary STL whose size agrees with its triangle count, else None (let trimesh try)."""
+def _stl(data: bytes) -> Mesh | None:
+    """Binary STL, when the size agrees with the triangle count (as trimesh decides), else
+    text STL."""
+    if len(data) >= 84:
+        count = int.from_bytes(data[80:84], "little")
+        if len(data) == 84 + 50 * count:
+            if count == 0:
+                return None
+            records = np.frombuffer(data, dtype=_STL_RECORD, count=count, offset=84)
+            vertices = records["points"].reshape(-1, 3).astype(np.float64)
+            return Mesh(vertices, np.arange(3 * count).reshape(-1, 3))
+    return _text_stl(data)
+
+
+def _text_stl(data: bytes) -> Mesh:
+    """A text STL of one solid, taken apart as trimesh takes it apart (between "solid" and
+    "endsolid", the numbers after each "vertex" to the end of its line); anything else
+    (several solids, a facet that is no triangle, a word that is no number) is left to it."""
+    text = _decoded(data).strip().lower()
+    found, position = [], 0
+    for _ in range(len(text)):
+        start, end = text.find("solid", position), text.find("endsolid", position)
+        position = end + len("endsolid")
+        if start < 0 or end < 0:
+            break
+        if start > end:
+            raise _NotSimple
+        pieces = text[start:end].split("vertex")[1:]
+        numbers = _parsed(" ".join(piece[: piece.find("\n")] for piece in pieces), np.float64)
+        if len(numbers) >= 3:
+            found.append(numbers)
+    if len(found) != 1 or len(found[0]) % 9 or not np.isfinite(found[0]).all():
+        raise _NotSimple
+    vertices = found[0].reshape(-1, 3)
+    return Mesh(vertices, np.arange(len(vertices)).reshape(-1, 3))
+
+
+# The OBJ statements read here (v, f) or passed over: normals and texture coordinates,
+# which are only counted; object, group, smoothing and material names (trimesh splits faces
+# by material only, at `usemtl`); comments. Any other line leaves the file to trimesh.
+_OBJ_STATEMENTS = (b"v ", b"f ", b"vn ", b"vt ", b"o ", b"g ", b"s ", b"mtllib ", b"usemtl ", b"#")
+
+# The forms of a face corner, by the slashes in it: `1`, `1/2`, `1//3`, `1/2/3`: how many
+# slashes, whether two are adjacent, and which counts (besides the vertices') index into.
+_OBJ_FORMS = {(0, False): (), (1, False): (b"vt ",), (2, True): (b"vn ",),
+              (2, False): (b"vt ", b"vn ")}
+
+_DIGITS_SLASH_SPACE = np.zeros(256, dtype=bool)
+_DIGITS_SLASH_SPACE[list(b"0123456789/ \n")] = True
+
+
+def _obj(data: bytes) -> Mesh:
+    """An OBJ whose faces are all triangles, with positive indices in one form throughout
+    (`1`, `1/2`, `1//3` or `1/2/3`), three numbers per vertex, and no `usemtl` after the
+    first face (trimesh would split the faces there and put them back in another order).
+
+    trimesh keeps only the vertices the faces use and, where faces also name texture
+    coordinates or normals, one vertex per distinct combination; the same is done here.
+    The lines are sorted out with byte counts and the numbers read by numpy: a loop over
+    the lines in Python would take a second for a million triangles."""
+    _decoded(data)   # another encoding: trimesh guesses which
+    if b"\\" in data or b"\t" in data or data.count(b"\r") != data.count(b"\r\n"):
+        raise _NotSimple   # continued lines, tabs, old Mac line ends: trimesh's own ways
+    text = b"\n" + data.replace(b"\r\n", b"\n")
+    lines = text.split(b"\n")[1:]
+    counts = {key: text.count(b"\n" + key) for key in _OBJ_STATEMENTS}
+    if sum(counts.values()) + lines.count(b"") != len(lines) or counts[b"usemtl "] > 1 \
+            or data.count(b"usemtl") != counts[b"usemtl "] or not counts[b"f "] \
+            or not counts[b"v "]:
+        raise _NotSimple   # another statement; materials, or "usemtl" in a name
+    if counts[b"usemtl "] and text.find(b"\nusemtl ") > text.find(b"\nf "):
+        raise _NotSimple
+    for key in (b"vt ", b"vn "):   # unused, but trimesh fails where they are no numbers
+        if counts[key]:
+            _parsed(b" ".join(line[3:] for line in lines if line[:3] == key), np.float64)
+    positions = [line[2:] for line in lines if line[:2] == b"v "]
+    vertices = _parsed(b" ".join(positions), np.float64)
+    if len(positions[0].split()) != 3 or len(vertices) != 3 * len(positions) \
+            or not np.isfinite(vertices).all():
+        raise _NotSimple   # vertices with colours or weights, not-a-number
+    vertices = vertices.reshape(-1, 3)
+    faces = b"\n".join(line[2:] for line in lines if line[:2] == b"f ") + b"\n"
+    columns = _corner_columns(faces, counts[b"f "])
+    limits = [len(vertices)] + [counts[key] for key in columns]
+    refs = _parsed(faces.replace(b"/", b" "), np.int64)
+    if len(refs) != 3 * len(limits) * counts[b"f "]:
+        raise _NotSimple
+    refs = refs.reshape(-1, len(limits)) - 1
+    if (refs < 0).any() or (refs >= limits).any() or math.prod(limits) >= 2 ** 62:
+        raise _NotSimple   # an index 0 or past the end (trimesh fails or wraps it round)
+    key, scale = refs[:, 0], 1
+    for column, limit in zip(refs.T[1:], limits[1:]):
+        key, scale = key * limit + column, scale * limit
+    combos, inverse = np.unique(key, return_inverse=True)
+    return Mesh(vertices[combos // scale], inverse.reshape(-1, 3))
+
+
+def _corner_columns(faces: bytes, count: int) -> tuple[bytes, ...]:
+    """Which counts a face's indices after the vertex index refer to, when `faces` (the
+    text after each "f ", a line each) is `count` lines of three corners of one form,
+    separated by single spaces; else _NotSimple."""
+    chars = np.frombuffer(faces, dtype=np.uint8)
+    if not _DIGITS_SLASH_SPACE[chars].all() or b"  " in faces or b" \n" in faces \
+            or b"\n " in faces or faces.startswith(b" "):
+        raise _NotSimple
+    ends = np.flatnonzero(chars == ord("\n"))
+    spaces = np.cumsum(chars == ord(" "))[ends]
+    if len(ends) != count or (np.diff(spaces, prepend=0) != 2).any():
+        raise _NotSimple   # quads and polygons
+    starts = np.flatnonzero(np.r_[True, (chars[:-1] == ord(" ")) | (chars[:-1] == ord("\n"))])
+    slashes = np.add.reduceat(chars == ord("/"), starts)
+    stops = np.r_[starts[1:] - 2, len(chars) - 2]
+    first, adjacent = int(slashes[0]), faces.count(b"//")
+    form = (first, adjacent > 0)
+    if form not in _OBJ_FORMS or (slashes != first).any() or adjacent not in (0, len(starts)) \
+            or (chars[starts] == ord("/")).any() or (chars[stops] == ord("/")).any():
+        raise _NotSimple   # another form, or corners of several forms
+    return _OBJ_FORMS[form]
+
+
+# The readers here, by file extension (any case).
+_READERS = {".stl": _stl, ".obj": _obj}
+
+
+def _decoded(data: bytes) -> str:
     try:
-        data = path.read_bytes()
-    except OSError:
-        return None
-    if len(data) < 84:
-        return None
-    count = int.from_bytes(data[80:84], "little")
-    if len(data) != 84 + 50 * count or count == 0:
-        return None
-    records = np.frombuffer(data, dtype=_STL_RECORD, count=count, offset=84)
-    vertices = records["points"].reshape(-1, 3).astype(np.float64)
-    return Mesh(vertices, np.arange(3 * count).reshape(-1, 3))
+        return data.decode("utf-8")
+    except UnicodeDecodeError:
+        raise _NotSimple from None
+
+
+def _parsed(text: bytes | str, dtype) -> np.ndarray:
+    """The numbers in `text`, separated by white space, read as trimesh reads them (numpy's
+    text parser); _NotSimple where something else stands between them."""
+    try:
+        return np.fromstring(text, dtype=dtype, sep=" ")
+    except ValueError:
+        raise _NotSimple from None
 
 
 def _with_trimesh(path: Path) -> Mesh | None:

@@ -1,0 +1,83 @@
+"""What a `sw2sim check` process loads: no mesh library for the formats the check reads
+itself (binary and text STL, OBJ of triangles: trimesh brings scipy and networkx, seconds
+of start-up), and no OpenGL library, since the check draws nothing. A caller that runs the
+check inside a process of its own (`main(argv)`: a test, a notebook) keeps its platform,
+since it may draw afterwards."""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+from packages import copy_example
+
+from sw2sim.check import trimeshes
+
+# Runs `sw2sim check` as the command line does (main() reading sys.argv) or as a caller
+# does (main(argv)), then writes what the process holds to the file named first.
+PROBE = """
+import json, os, sys
+out, how, path = sys.argv[1:4]
+before = os.environ.get("MUJOCO_GL")
+sys.argv = ["sw2sim", "check", path]
+from sw2sim.cli import main
+status = main() if how == "command" else main(["check", path])
+import mujoco
+loaded = sorted({m.split(".")[0] for m in sys.modules} & {"trimesh", "scipy", "networkx", "OpenGL"})
+with open(out, "w") as f:
+    json.dump({"status": status, "loaded": loaded, "before": before,
+               "after": os.environ.get("MUJOCO_GL"), "draws": hasattr(mujoco, "GLContext")}, f)
+"""
+
+
+def _probe(tmp_path: Path, how: str, package: Path, env: dict | None = None) -> dict:
+    out = tmp_path / f"probe-{how}.json"
+    done = subprocess.run([sys.executable, "-c", PROBE, str(out), how, str(package)],
+                          cwd=tmp_path, env=env, capture_output=True, text=True, timeout=300)
+    assert out.is_file(), done.stdout + done.stderr
+    return json.loads(out.read_text())
+
+
+def _as_obj(package: Path) -> Path:
+    """The package with each binary STL rewritten as an OBJ of its merged triangles."""
+    urdf = next((package / "urdf").glob("*.urdf"))
+    text = urdf.read_text()
+    for stl in sorted((package / "meshes").glob("*.STL")):
+        mesh = trimeshes.read(stl)
+        mesh.merge_vertices()
+        lines = [f"v {x!r} {y!r} {z!r}" for x, y, z in mesh.vertices.tolist()]
+        lines += [f"f {a} {b} {c}" for a, b, c in (mesh.faces + 1).tolist()]
+        stl.with_suffix(".obj").write_text("\n".join(lines) + "\n")
+        stl.unlink()
+        text = text.replace(f"{stl.name}\"", f"{stl.stem}.obj\"")
+    urdf.write_text(text)
+    return package
+
+
+def test_the_command_loads_neither_a_mesh_library_nor_opengl(tmp_path):
+    package = copy_example(1, tmp_path)
+    found = _probe(tmp_path, "command", package)
+    assert found["status"] == 0
+    assert found["loaded"] == []
+    assert not found["draws"], "MuJoCo was imported with drawing turned off"
+    assert found["after"] == found["before"], "the platform chosen for drawing is put back"
+
+
+def test_an_obj_package_is_read_without_trimesh(tmp_path):
+    package = _as_obj(copy_example(3, tmp_path))
+    found = _probe(tmp_path, "command", package)
+    assert found["status"] == 0 and found["loaded"] == []
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="OSMesa is Linux's")
+def test_a_caller_of_main_keeps_its_platform(tmp_path):
+    package = copy_example(4, tmp_path)
+    env = {**os.environ, "MUJOCO_GL": "osmesa"}
+    found = _probe(tmp_path, "argv", package, env)
+    assert found["status"] == 0
+    assert found["draws"] and "OpenGL" in found["loaded"]
+    assert found["after"] == "osmesa"

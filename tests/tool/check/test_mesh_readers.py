@@ -1,0 +1,177 @@
+"""The check's own mesh readers (sw2sim/check/trimeshes.py) against trimesh, which reads the
+files they leave: binary and text STL and OBJ of triangles must come out as trimesh reads
+them, triangle for triangle, so that no verdict of the check depends on which one read a
+file; whatever they do not fully understand they must leave to trimesh."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import trimesh
+
+from sw2sim.check import trimeshes
+
+
+def _part() -> trimesh.Trimesh:
+    """A closed part with a few hundred triangles, off the origin and turned, so that its
+    numbers have all their digits."""
+    part = trimesh.creation.annulus(r_min=0.011, r_max=0.03, height=0.017, sections=40)
+    part.apply_transform(trimesh.transformations.euler_matrix(0.3, -1.1, 2.0))
+    part.apply_translation([0.123456789, -0.2, 0.05])
+    return part
+
+
+def _obj_text(part: trimesh.Trimesh, form: str, *, header: str = "", crlf: bool = False,
+              extra_vertex: bool = False) -> bytes:
+    """`part` as OBJ by hand, its corners in `form` ("v", "v/t", "v//n" or "v/t/n")."""
+    lines = [header] if header else []
+    lines += [f"v {float(x)!r} {float(y)!r} {z:.6e}" for x, y, z in part.vertices]
+    if extra_vertex:
+        lines.append("v 5 5 5")   # used by no face: trimesh drops it
+    lines += [f"vt {i % 7 / 7} 0.5" for i in range(9)]
+    lines += ["vn 0 0 1", "vn 0 1 0", "vn 1 0 0"]
+    for n, face in enumerate(part.faces):
+        corners = []
+        for k, v in enumerate(face + 1):
+            t, m = (n + k) % 9 + 1, (n * k) % 3 + 1
+            corners.append({"v": f"{v}", "v/t": f"{v}/{t}", "v//n": f"{v}//{m}",
+                            "v/t/n": f"{v}/{t}/{m}"}[form])
+        lines.append("f " + " ".join(corners))
+    return (("\r\n" if crlf else "\n").join(lines) + "\n").encode()
+
+
+def _text_stl(part: trimesh.Trimesh, upper: bool = False) -> bytes:
+    text = trimesh.exchange.stl.export_stl_ascii(part)
+    return (text.upper() if upper else text).encode()
+
+
+SIMPLE = {
+    "binary STL": (".STL", lambda p: p.export(file_type="stl")),
+    "text STL": (".stl", _text_stl),
+    "text STL in capitals": (".STL", lambda p: _text_stl(p, upper=True)),
+    "text STL, Windows line ends": (".stl", lambda p: _text_stl(p).replace(b"\n", b"\r\n")),
+    "OBJ by trimesh": (".obj", lambda p: p.export(file_type="obj").encode()),
+    "OBJ, vertex only": (".obj", lambda p: _obj_text(p, "v", extra_vertex=True)),
+    "OBJ, vertex/texture": (".obj", lambda p: _obj_text(p, "v/t")),
+    "OBJ, vertex//normal": (".obj", lambda p: _obj_text(p, "v//n")),
+    "OBJ, vertex/texture/normal": (".obj", lambda p: _obj_text(p, "v/t/n", crlf=True)),
+    "OBJ with names and a material": (".obj", lambda p: _obj_text(
+        p, "v", header="# part\nmtllib part.mtl\no part\ng body\ns off\nusemtl steel")),
+}
+
+
+def _same(mine: trimeshes.Mesh, theirs: trimeshes.Mesh) -> None:
+    """The same triangles in the same order, and the same vertices (as many of each)."""
+    assert np.array_equal(mine.triangles, theirs.triangles)
+    assert len(mine.vertices) == len(theirs.vertices)
+    assert np.array_equal(np.unique(mine.vertices, axis=0), np.unique(theirs.vertices, axis=0))
+
+
+@pytest.mark.parametrize("kind", SIMPLE)
+def test_the_readers_read_simple_files_as_trimesh_does(tmp_path, kind):
+    suffix, write = SIMPLE[kind]
+    path = tmp_path / f"part{suffix}"
+    path.write_bytes(write(_part()))
+    reader = trimeshes._stl if suffix.lower() == ".stl" else trimeshes._obj
+    mine = reader(path.read_bytes())   # read here: no trimesh.load behind it
+    _same(mine, trimeshes._with_trimesh(path))
+    _same(trimeshes.read(path), mine)
+
+
+def _swap(old: str, new: str, count: int = 1):
+    def change(text: bytes) -> bytes:
+        assert text.count(old.encode()) >= count
+        return text.replace(old.encode(), new.encode(), count)
+    return change
+
+
+def _quads(part: trimesh.Trimesh) -> bytes:
+    """Two triangles' worth of the part as one quad: "f a b c d"."""
+    text = _obj_text(part, "v")
+    first = text.index(b"\nf ")
+    end = text.index(b"\n", first + 1)
+    return text[:end] + b" 1" + text[end:]
+
+
+def _coloured(text: bytes) -> bytes:
+    """Every vertex with an RGB colour after its position: "v x y z r g b"."""
+    return b"\n".join(line + b" 1 0 0" if line.startswith(b"v ") else line
+                      for line in text.split(b"\n"))
+
+
+def _material_after_first_face(text: bytes) -> bytes:
+    second = text.index(b"\nf ", text.index(b"\nf ") + 1)
+    return text[:second] + b"\nusemtl a" + text[second:]
+
+
+def _two_solids(part: trimesh.Trimesh) -> bytes:
+    text = _text_stl(part)
+    return text + text.replace(b"solid", b"solid second", 1)
+
+
+# What the readers here leave to trimesh: trimesh's result stands (None when it fails).
+LEFT = {
+    "OBJ of quads": (".obj", _quads),
+    "OBJ with relative indices": (".obj", lambda p: _swap("\nf 1 ", "\nf -1 ")(
+        _obj_text(p, "v"))),
+    "OBJ with an index 0": (".obj", lambda p: _swap("\nf 1 ", "\nf 0 ")(_obj_text(p, "v"))),
+    "OBJ with two materials": (".obj", lambda p: _swap("\nf ", "\nusemtl a\nf ", 1)(
+        _obj_text(p, "v", header="usemtl b"))),
+    "OBJ with a material after its first face": (".obj", lambda p: _material_after_first_face(
+        _obj_text(p, "v"))),
+    "OBJ with corners of two forms": (".obj", lambda p: _swap("\nf 1 ", "\nf 1/1 ")(
+        _obj_text(p, "v"))),
+    "OBJ with vertex colours": (".obj", lambda p: _coloured(_obj_text(p, "v"))),
+    "OBJ with a tab": (".obj", lambda p: _swap("\nv ", "\nv\t")(_obj_text(p, "v"))),
+    "OBJ with a word for a number": (".obj", lambda p: _swap("\nv ", "\nv x ")(
+        _obj_text(p, "v"))),
+    "OBJ with lines (l)": (".obj", lambda p: _obj_text(p, "v") + b"l 1 2\n"),
+    "OBJ without faces": (".obj", lambda p: b"v 0 0 0\nv 1 0 0\nv 0 1 0\n"),
+    "text STL of two solids": (".stl", _two_solids),
+    "text STL with a quadrilateral facet": (".stl", lambda p: _swap(
+        "endloop", "vertex 1 1 1\nendloop")(_text_stl(p))),
+    "text STL with a word for a number": (".stl", lambda p: _swap("vertex ", "vertex x")(
+        _text_stl(p))),
+    "STL cut short": (".stl", lambda p: p.export(file_type="stl")[:-7]),
+}
+
+
+@pytest.mark.parametrize("kind", LEFT)
+def test_the_readers_leave_what_they_do_not_fully_understand_to_trimesh(tmp_path, kind):
+    suffix, write = LEFT[kind]
+    path = tmp_path / f"part{suffix}"
+    path.write_bytes(write(_part()))
+    reader = trimeshes._stl if suffix == ".stl" else trimeshes._obj
+    with pytest.raises(trimeshes._NotSimple):
+        reader(path.read_bytes())
+    theirs = trimeshes._with_trimesh(path)
+    mine = trimeshes.read(path)
+    if theirs is None or not len(theirs.faces):
+        assert mine is None
+    else:
+        _same(mine, theirs)
+
+
+def test_an_empty_binary_stl_is_no_mesh_without_trimesh(tmp_path):
+    path = tmp_path / "empty.STL"
+    path.write_bytes(bytes(84))
+    assert trimeshes._stl(path.read_bytes()) is None
+    assert trimeshes.read(path) is None
+
+
+def test_merging_keeps_numpy_unique_s_vertices_and_order():
+    """merge_vertices sorts the rows itself; np.unique(axis=0) is what it replaced."""
+    rng = np.random.default_rng(3)
+    points = np.round(rng.uniform(-1, 1, (300, 3)), 2)
+    points[::7, 0] = -0.0              # -0.0 and 0.0 are one coordinate
+    points[1::7, 0] = 0.0
+    points[2::9] += 1e-10              # closer than MERGE_DIGITS: one vertex
+    vertices = points[rng.integers(0, len(points), 3000)]
+    faces = np.arange(3000).reshape(-1, 3)
+    mesh = trimeshes.Mesh(vertices, faces)
+    mesh.merge_vertices()
+    keys = np.round(vertices, trimeshes.MERGE_DIGITS)
+    _, first, inverse = np.unique(keys, axis=0, return_index=True, return_inverse=True)
+    assert np.array_equal(mesh.vertices, vertices[first])
+    assert np.array_equal(mesh.faces, inverse.reshape(-1)[faces])
+    assert np.array_equal(mesh.triangles.round(8), vertices[faces].round(8))
