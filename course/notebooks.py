@@ -33,7 +33,7 @@ import yaml
 from nbformat import NotebookNode
 from nbformat.v4 import new_code_cell, new_markdown_cell, new_notebook
 
-from . import freshness, media
+from . import freshness, media, sources
 from .freshness import Fingerprint
 from .media import RENDERERS
 from .notebook_setup import named_files, needed_files, on_site, read_by, setup_code
@@ -174,6 +174,7 @@ def _markdown(lines: list[str], first: int, page: Page, root: Path) -> list[str]
             continue
         if n in page.attribute_lines:
             continue
+        text = sources.as_markdown(text, _sources())
         text = _HEADING_ID.sub(r"\1", text)
         if not text.strip().startswith("$$"):
             text = _INLINE_MATH.sub(r"$\1$", text)
@@ -189,7 +190,7 @@ def _liquid_regions(lines: list[str], first: int, page: Page) -> list[tuple[int,
     spans: list[tuple[int, int]] = []
     depth, start = 0, None
     for n, text in enumerate(lines, start=first):
-        stripped = INCLUDE_CODE.sub("", without_raw_tags(text))
+        stripped = sources.INCLUDE.sub("", INCLUDE_CODE.sub("", without_raw_tags(text)))
         if page.in_raw(n) or n in page.code_lines or not _LIQUID.search(stripped):
             if depth == 0 and start is not None:
                 spans.append((start, n))
@@ -218,6 +219,13 @@ def _liquid_regions(lines: list[str], first: int, page: Page) -> list[tuple[int,
         else:
             merged.append((a, b))
     return merged
+
+
+@cache
+def _sources() -> dict[str, sources.Source]:
+    """_data/sources.yml: a page's `{% include source.html %}` links become Markdown links
+    (course.sources), not a note that the site builds something here."""
+    return sources.load()
 
 
 def _included(args: str, root: Path) -> str:
