@@ -6,6 +6,11 @@ line, joint origins rounded to 5 significant digits, inertials with 15 and
 E-notation, the CSV with one row per link, the joint-names YAML with its empty
 first entry. What the lessons add by hand afterwards (colours, a world link,
 joint dynamics, transmissions) is marked as such in `Robot`.
+
+The module is over 500 lines because it is the exporter's writers side by side (URDF,
+CSV, package.xml, CMakeLists.txt, YAML, launch files, STL), each next to the others whose
+layout it must match; `write_package` and `write_exported` are the two ways of calling
+them, the lesson's package and a bare re-export.
 """
 
 from __future__ import annotations

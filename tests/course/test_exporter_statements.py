@@ -20,7 +20,7 @@ import sw2sim
 from lxml import etree
 from page_text import flat_page as flat
 
-from course.exporter_format import EXPORTER_GREY, write_package
+from course.exporter_format import EXPORTER_GREY, write_exported
 from course.practices import ROOT, design
 
 
@@ -28,10 +28,10 @@ from course.practices import ROOT, design
 
 def exported_files(practice: str, tmp_path) -> list[str]:
     """The files an export writes besides the meshes, as the course's copy of the exporter's
-    format writes them (course/exporter_format.py:write_package, after ExportHelper.cs:
-    ExportRobot, without the urdf.rviz the exporter names but does not write)."""
+    format writes them (course/exporter_format.py:write_exported, after ExportHelper.cs:
+    ExportRobot: the lesson's package without its hand edits and their saved copies)."""
     folder = tmp_path / practice
-    written = write_package(design(practice).robot(), folder, rviz=False)
+    written = write_exported(design(practice).robot(), folder)
     return sorted(p.relative_to(folder).as_posix() for p in written
                   if p.parent.name != "meshes")
 

@@ -154,7 +154,12 @@ def test_the_block_over_ros_resets_as_in_gazebo(ros):
     assert marks["after_world"] == 0.0 and marks["after_simulation"] == 0.0
     back = _back(clock)
     assert back >= marks["clock_at_world"] and clock[back] < 0.2
-    assert np.max(np.diff(clock[back:])) < 0.5, "the clock jumped after the reset"
+    # Before the fix the clock went back to the old time (4.54 s -> 9.91 s). A busy test
+    # machine may hold a few ticks back (a tenth of a second of wall time is a whole
+    # simulated second at REALTIME 10), so only a leap of seconds, or a step back, fails.
+    steps = np.diff(clock[back:])
+    assert np.all(steps >= 0), "the clock went back after the reset"
+    assert np.max(steps) < 2.0, "the clock jumped after the reset"
     states = [stamp for stamp, _, _ in record["states"]]
     # JointStateController at publish_rate 20, then silent after reset_simulation until
     # the clock passes its old time (stamps never go back)

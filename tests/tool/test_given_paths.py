@@ -27,7 +27,12 @@ def test_a_zip_is_checked_as_the_folder_it_holds_and_named_through_the_archive(t
     before = zip_path.read_bytes()
     monkeypatch.chdir(tmp_path)
     from_zip, from_folder = check("example_4.zip"), check(package)
-    assert from_zip.findings and summary(from_zip) == summary(from_folder)
+    # The one difference: a folder's unsaved hand edits (the edit above is one) are worth a
+    # warning, since `sw2sim edits save` saves into the folder; a .zip is only read.
+    folder_only = [f for f in summary(from_folder) if f[0] == "hand-edits-unsaved"]
+    assert folder_only and "hand-edits-unsaved" not in {f.rule for f in from_zip.findings}
+    assert from_zip.findings and summary(from_zip) == sorted(set(summary(from_folder))
+                                                             - set(folder_only))
     urdf = "urdf/example_4.urdf"
     assert {f.file for f in from_zip.findings if f.line} == {f"example_4.zip/example_4/{urdf}"}
     assert from_zip.path == "example_4.zip/example_4"
