@@ -152,3 +152,21 @@ def between(text: str, start: str, end: str) -> str:
         return ""
     stop = text.find(end, begin)
     return text[begin:stop if stop >= 0 else len(text)]
+
+
+def tiny_site(root: Path, pages: dict[str, str]) -> Path:
+    """A site in `root` with this repository's configuration, layout and plugins."""
+    root.mkdir(parents=True, exist_ok=True)
+    for name in SITE_MACHINERY:
+        source = ROOT / name
+        if source.is_dir():
+            shutil.copytree(source, root / name)
+        else:
+            shutil.copy2(source, root / name)
+    # tools/render-math.mjs typesets the math with KaTeX from this repository's node_modules
+    # (Node finds it from the script's real path).
+    (root / "tools").symlink_to(ROOT / "tools", target_is_directory=True)
+    for relative, text in pages.items():
+        (root / relative).parent.mkdir(parents=True, exist_ok=True)
+        (root / relative).write_text(text, encoding="utf-8")
+    return root

@@ -13,7 +13,6 @@ import html
 import json
 import os
 import re
-import shutil
 import subprocess
 import textwrap
 from pathlib import Path
@@ -21,7 +20,7 @@ from pathlib import Path
 import pytest
 import yaml
 
-from jekyll import (LOG_PROBLEM, SITE_MACHINERY, assert_clean_build, build_log, need_tool, run_bundled,  # noqa: F401
+from jekyll import (LOG_PROBLEM, SITE_MACHINERY, assert_clean_build, build_log, need_tool, run_bundled, tiny_site,  # noqa: F401
                     between, built_page, bundle, jekyll_build, whole_site)
 from repository import ROOT
 
@@ -403,27 +402,9 @@ $$\\frac{a}{b} < c$$
 '''
 
 
-def _tiny_site(root: Path, pages: dict[str, str]) -> Path:
-    """A site in `root` with this repository's configuration, layout and plugins."""
-    root.mkdir(parents=True, exist_ok=True)
-    for name in SITE_MACHINERY:
-        source = ROOT / name
-        if source.is_dir():
-            shutil.copytree(source, root / name)
-        else:
-            shutil.copy2(source, root / name)
-    # tools/render-math.mjs typesets the math with KaTeX from this repository's node_modules
-    # (Node finds it from the script's real path).
-    (root / "tools").symlink_to(ROOT / "tools", target_is_directory=True)
-    for relative, text in pages.items():
-        (root / relative).parent.mkdir(parents=True, exist_ok=True)
-        (root / relative).write_text(text, encoding="utf-8")
-    return root
-
-
 @pytest.fixture(scope="module")
 def demo(bundle, tmp_path_factory) -> tuple[Path, Path]:
-    source = _tiny_site(tmp_path_factory.mktemp("demo-src"), {
+    source = tiny_site(tmp_path_factory.mktemp("demo-src"), {
         "_pages/demo.md": DEMO_PAGE,
         "examples/demo/scripts/script.py": DEMO_SCRIPT,
         "examples/demo/scripts/__init__.py": "",
@@ -532,7 +513,7 @@ def test_verbatim_examples(demo):
 
 
 def _failing_build(tmp_path: Path, page: str) -> str:
-    source = _tiny_site(tmp_path / "src", {"_pages/broken.md": page,
+    source = tiny_site(tmp_path / "src", {"_pages/broken.md": page,
                                            "examples/demo/script.py": DEMO_SCRIPT})
     result = jekyll_build(source, tmp_path / "site")
     assert result.returncode != 0, "the build should have failed:\n" + build_log(result)

@@ -10,13 +10,12 @@ from __future__ import annotations
 
 import html
 import re
-import shutil
 from pathlib import Path
 
 import pytest
 import yaml
 
-from jekyll import SITE_MACHINERY, assert_clean_build, build_log, bundle, jekyll_build  # noqa: F401
+from jekyll import SITE_MACHINERY, assert_clean_build, build_log, bundle, jekyll_build, tiny_site  # noqa: F401
 from repository import ROOT
 
 PAGE = """---
@@ -32,21 +31,6 @@ The exporter changes the sign of each product.{% include source.html id="inertia
 """
 
 
-def tiny_site(root: Path, page: str) -> Path:
-    """A site in `root` with this repository's configuration, layout, includes, data and plugins."""
-    root.mkdir(parents=True)
-    for name in SITE_MACHINERY:
-        source = ROOT / name
-        if source.is_dir():
-            shutil.copytree(source, root / name)
-        else:
-            shutil.copy2(source, root / name)
-    (root / "tools").symlink_to(ROOT / "tools", target_is_directory=True)
-    (root / "_pages").mkdir()
-    (root / "_pages" / "sources.md").write_text(page, encoding="utf-8")
-    return root
-
-
 def link(entry: dict) -> str:
     """The HTML the include renders for an entry."""
     title = f'{entry["file"]}:{entry["lines"]} at {entry["tag"]}'
@@ -56,7 +40,7 @@ def link(entry: dict) -> str:
 
 def test_the_link_renders_after_its_sentence_and_in_a_table_cell(bundle, tmp_path):
     data = yaml.safe_load((ROOT / "_data" / "sources.yml").read_text(encoding="utf-8"))
-    source = tiny_site(tmp_path / "src", PAGE)
+    source = tiny_site(tmp_path / "src", {"_pages/sources.md": PAGE})
     assert_clean_build(jekyll_build(source, tmp_path / "site"), "a page with source links")
     built = (tmp_path / "site" / "sources" / "index.html").read_text(encoding="utf-8")
     assert f'each product.{link(data["inertia-signs"])} Next.' in built
@@ -67,7 +51,7 @@ def test_the_link_renders_after_its_sentence_and_in_a_table_cell(bundle, tmp_pat
 
 def test_an_unknown_id_stops_the_build(bundle, tmp_path):
     page = PAGE.replace('id="colour"', 'id="no-such-entry"')
-    result = jekyll_build(tiny_site(tmp_path / "src", page), tmp_path / "site")
+    result = jekyll_build(tiny_site(tmp_path / "src", {"_pages/sources.md": page}), tmp_path / "site")
     assert result.returncode != 0, "the build should have failed:\n" + build_log(result)
     log = build_log(result)
     assert "undefined variable no-such-entry" in log and "sources.md" in log, log
