@@ -3,9 +3,11 @@ print them as JSON once the clock passes UNTIL seconds:
 
     python record.py UNTIL JOINT_STATES_TOPIC COMMAND_TOPIC ...
 
-UNTIL is a simulated time, `+S` for S seconds after the recorder's start, or `+S@TOPIC`
-for S seconds after the first message on TOPIC, one of the COMMAND_TOPICs (a command that
-a slow-starting `rostopic pub` sends).
+UNTIL is a simulated time, `+S` for S seconds after the first joint state heard (a
+subscription takes a wall-clock moment to connect, many simulated seconds when the
+simulation runs faster than real time), or `+S@TOPIC` for S seconds after the first
+message on TOPIC, one of the COMMAND_TOPICs (a command that a slow-starting `rostopic pub`
+sends).
 
 {"states": [[t, {joint: position}], ...], "speeds": [[t, {joint: velocity}], ...],
  "commands": {topic: [[t, value], ...]}}
@@ -14,6 +16,7 @@ Run by the ROS tests in a process of its own, as a separate rospy node.
 
 import json
 import sys
+import threading
 import time
 
 import rosgraph
@@ -22,14 +25,6 @@ from sensor_msgs.msg import JointState
 from std_msgs.msg import Float64
 
 WALL_TIMEOUT = 90.0
-
-
-def _now() -> float:
-    """Simulated time once the clock has ticked (0 before the first /clock message)."""
-    deadline = time.monotonic() + WALL_TIMEOUT
-    while not rospy.get_time() and time.monotonic() < deadline:
-        time.sleep(0.01)
-    return rospy.get_time()
 
 
 def main() -> int:
@@ -45,24 +40,30 @@ def main() -> int:
         time.sleep(0.1)
     rospy.init_node("recorder", anonymous=True, disable_signals=True)
     seconds, _, trigger = until.partition("@")
-    until = float(until) if not until.startswith("+") else _now() + float(seconds[1:])
-    if trigger:
-        until = float("inf")    # until the trigger's message comes
+    relative = until.startswith("+")
+    # a relative end is set by the first state, or by the trigger's first message
+    until = float("inf") if relative else float(until)
     states, speeds, commands = [], [], {topic: [] for topic in command_topics}
+    lock = threading.Lock()   # the callbacks' threads against the final print
 
     def command(topic, message):
         nonlocal until
-        commands[topic].append([rospy.get_time(), message.data])
-        if topic == trigger and len(commands[topic]) == 1:
-            until = rospy.get_time() + float(seconds[1:])
+        with lock:
+            commands[topic].append([rospy.get_time(), message.data])
+            if topic == trigger and len(commands[topic]) == 1:
+                until = rospy.get_time() + float(seconds[1:])
 
     def state(message):
+        nonlocal until
         # the simulation's own time of the state (the clock's messages may be coarser)
         t = message.header.stamp.to_sec() or rospy.get_time()
-        if not states:
-            print("recording", file=sys.stderr, flush=True)   # a test may wait for this line
-        states.append([t, dict(zip(message.name, message.position))])
-        speeds.append([t, dict(zip(message.name, message.velocity))])
+        with lock:
+            if not states:
+                if relative and not trigger:
+                    until = t + float(seconds[1:])
+                print("recording", file=sys.stderr, flush=True)   # a test may wait for this
+            states.append([t, dict(zip(message.name, message.position))])
+            speeds.append([t, dict(zip(message.name, message.velocity))])
 
     rospy.Subscriber(states_topic, JointState, state)
     for topic in command_topics:
@@ -70,7 +71,8 @@ def main() -> int:
     deadline = time.monotonic() + WALL_TIMEOUT
     while rospy.get_time() < until and time.monotonic() < deadline:
         time.sleep(0.05)
-    print(json.dumps({"states": states, "speeds": speeds, "commands": commands}))
+    with lock:
+        print(json.dumps({"states": states, "speeds": speeds, "commands": commands}))
     rospy.signal_shutdown("done")
     return 0 if rospy.get_time() >= until else 1
 
