@@ -114,7 +114,7 @@ class _Placed:
 def _pair(ctx, tree: Tree, a: str, b: str, pieces_a, pieces_b) -> None:
     """Measure how far links a and b overlap, and report it once for the pair."""
     solid = hull = 0.0
-    touching = {}
+    touching, overlapping = {}, []
     for pa in pieces_a:
         for pb in pieces_b:
             if np.any(pa.bounds[0] > pb.bounds[1]) or np.any(pb.bounds[0] > pa.bounds[1]):
@@ -124,19 +124,24 @@ def _pair(ctx, tree: Tree, a: str, b: str, pieces_a, pieces_b) -> None:
                 continue
             hull += shared_hull
             # The meshes lie within their hulls: no need to intersect them for a mere touch.
-            if shared_hull >= MIN_VOLUME and pa.volume is not None and pb.volume is not None \
-                    and pa.solid is not None and pb.solid is not None:
-                solid += (pa.solid ^ pb.solid).volume()
+            if shared_hull >= MIN_VOLUME and pa.volume is not None and pb.volume is not None:
+                overlapping.append((pa, pb))
             touching.setdefault(a, pa.piece.element)
             touching.setdefault(b, pb.piece.element)
     if not touching:
         return
+    smaller = min(_volume(pieces_a, solid=True), _volume(pieces_b, solid=True))
+    # The meshes' common volume is at most their hulls': when even that would not be worth
+    # a report, the meshes need no intersecting (a mesh boolean takes a fiftieth of a second).
+    if _reportable(hull, smaller):
+        for pa, pb in overlapping:
+            if pa.solid is not None and pb.solid is not None:
+                solid += (pa.solid ^ pb.solid).volume()
     parent = tree.parent(b) == a or tree.parent(a) == b
     child = a if tree.parent(a) == b else b  # the child of the two, else the later one
     relation = (f'parent and child, joint "{tree.joint_name(child)}"' if parent
                 else "not parent and child")
     line = source_line(touching[child], None)
-    smaller = min(_volume(pieces_a, solid=True), _volume(pieces_b, solid=True))
     if _reportable(solid, smaller):
         ctx.add("collision-overlap", f'the collision shapes of links "{a}" and "{b}" '
                 f"({relation}) pass through each other at the rest pose: {solid * 1e6:.3g} "
