@@ -4,18 +4,20 @@
     .venv/bin/python tools/benchmark.py pages tests     # only these sections
 
 Sections: `models` (load, compile, step rate of each example), `drawings` (each part and
-assembly drawing), `pages` (each lesson page in a fresh process, as tests/course/test_pages.py
-runs them), `figures` (each figure made as `make media` makes it, and whether the tests
-would make it again: they do only when the manifest cannot vouch for the committed file),
-`tests` (each test file in a pytest of its own), `commands` (each `sw2sim` command in a
-fresh process, as a user types it: `check` three times on every example package and on
-packages of every shape tools/check_packages.py writes, COLLADA, OBJ, text STL, 40 links,
-200,000 triangles, with the median and the worst; `convert`, `render`), `runner` (every lesson page through the
-page runner, its processes plain and then forked from the fork server, side by side with
-`jupyter nbconvert --execute` over the same pages' notebooks; not in the default set), `ros`
-(the whole test suite as `make test` runs it, with and without tests/ros, in pairs: what
-the ROS tests add; not in the default set, it takes some ten minutes), `ros2` (the same for
-tests/ros2 and tests/tool/port, the ROS 2 tests).
+assembly drawing), `pages` (each lesson page in a fresh process, as
+tests/course/test_pages.py runs them), `figures` (each figure made as `make media` makes
+it, and whether the tests would make it again: they do only when the manifest cannot vouch
+for the committed file), `tests` (each test file in a pytest of its own), `commands` (each
+`sw2sim` command in a fresh process, as a user types it: `check` three times on every
+example package and on packages of every shape tools/check_packages.py writes, COLLADA,
+OBJ, text STL, 40 links, 200,000 triangles, with the median and the worst, first as a
+user's `pip install .` runs it (in a venv of its own, .cache/benchmark-user-venv), then in
+the project's .venv; `convert`, `render`), `runner` (every lesson page through the page
+runner, its processes plain and then forked from the fork server, side by side with
+`jupyter nbconvert --execute` over the same pages' notebooks; not in the default set),
+`ros` (the whole test suite as `make test` runs it, with and without tests/ros, in pairs:
+what the ROS tests add; not in the default set, it takes some ten minutes), `ros2` (the
+same for tests/ros2 and tests/tool/port, the ROS 2 tests).
 
 Figures, not assertions: compare them before and after a change (2-core machines are the
 target). Each line shows CPU seconds as well as wall-clock seconds: on a busy machine the
@@ -190,30 +192,50 @@ def ros2() -> None:
     _share_of(["tests/ros2", "tests/tool/port"], "the ROS 2 tests")
 
 
-def _sw2sim(*args: str) -> subprocess.CompletedProcess:
+def _sw2sim(*args: str, python: str = sys.executable) -> subprocess.CompletedProcess:
     """One `sw2sim` command in a fresh Python, as typed in a terminal after an install: in
     the environment this process was given before `import sw2sim` above chose a GL platform
     for it, with Python's compiled modules kept (make_test_environment)."""
-    return subprocess.run([sys.executable, "-m", "sw2sim", *args], cwd=ROOT,
+    return subprocess.run([python, "-m", "sw2sim", *args], cwd=ROOT,
                           capture_output=True, text=True, env=make_test_environment())
+
+
+# A virtual environment with nothing but the tool, as the README's `python -m pip install .`
+# makes it for a user. The project's .venv holds far more (the course's libraries, Jupyter,
+# ROS's path file, a hundred distributions that MuJoCo's import looks through for plugins),
+# and is installed in editable mode: a check there starts a tenth of a second slower.
+USER_VENV = ROOT / ".cache" / "benchmark-user-venv"
+
+
+def user_install() -> str:
+    """The Python of USER_VENV, with the tool as it is now installed into it (made on first
+    use; the tool itself installed again on every run)."""
+    python = USER_VENV / "bin" / "python"
+    quiet = {"cwd": ROOT, "check": True, "capture_output": True}
+    if not python.is_file():
+        subprocess.run([sys.executable, "-m", "venv", str(USER_VENV)], **quiet)
+    subprocess.run([str(python), "-m", "pip", "install", "-q", "."], **quiet)
+    subprocess.run([str(python), "-m", "pip", "install", "-q", "--no-deps", "--force-reinstall",
+                    "."], **quiet)
+    return str(python)
 
 
 CHECK_ROUNDS = 3   # runs of `check` per package: the machine may be busy during any one
 
 
-def _timed_checks(packages: dict[str, Path]) -> None:
-    """`sw2sim check` on each package CHECK_ROUNDS times: per package its CPU and wall
-    seconds (median of the runs, and the slowest wall), then the median and the worst over
-    all packages. The check's targets: 0.5 s median, 2 s worst."""
-    print(f"{'check (cpu and wall: median of ' + str(CHECK_ROUNDS) + ' runs)':60} {'cpu':>7}   "
+def _timed_checks(packages: dict[str, Path], python: str, where: str) -> None:
+    """`sw2sim check` on each package CHECK_ROUNDS times, with `python`: per package its CPU
+    and wall seconds (median of the runs, and the slowest wall), then the median and the
+    worst over all packages. The check's targets: 0.5 s median, 2 s worst."""
+    print(f"{'check ' + where + ' (median of ' + str(CHECK_ROUNDS) + ' runs)':60} {'cpu':>7}   "
           f"{'wall':>7}   {'slowest':>7}   findings")
-    _sw2sim("check", str(next(iter(packages.values()))))   # compiles the modules, untimed
+    _sw2sim("check", str(next(iter(packages.values()))), python=python)   # compiles, untimed
     medians, worst = [], []
     for label, package in packages.items():
         runs = []
         for _ in range(CHECK_ROUNDS):
             cpu, wall = cpu_seconds(), time.perf_counter()
-            done = _sw2sim("check", "--json", str(package))
+            done = _sw2sim("check", "--json", str(package), python=python)
             runs.append((cpu_seconds() - cpu, time.perf_counter() - wall))
         cpus, walls = sorted(r[0] for r in runs), sorted(r[1] for r in runs)
         cpu, wall = cpus[len(cpus) // 2], walls[len(walls) // 2]
@@ -230,7 +252,7 @@ def _timed_checks(packages: dict[str, Path]) -> None:
           f"{statistics.median(c for c, _ in medians):7.2f} s "
           f"{statistics.median(w for _, w in medians):7.2f} s")
     print(f"{'check, the most any run took':60} {max(c for c, _ in worst):7.2f} s "
-          f"{max(w for _, w in worst):7.2f} s")
+          f"{max(w for _, w in worst):7.2f} s\n")
 
 
 def commands() -> None:
@@ -241,7 +263,12 @@ def commands() -> None:
         scratch = Path(scratch)
         packages = {str(package_dir(p).relative_to(ROOT)): package_dir(p) for p in PRACTICES}
         packages.update(all_shapes(scratch / "shapes"))
-        _timed_checks(packages)
+        start = time.perf_counter()
+        python = user_install()
+        print(f"{'(pip install . into ' + str(USER_VENV.relative_to(ROOT)) + ', untimed)':60} "
+              f"{'':9} {time.perf_counter() - start:7.2f} s")
+        _timed_checks(packages, python, "as a user installs it")
+        _timed_checks(packages, sys.executable, "in the project's .venv")
         pkg = package_dir(PRACTICES[-1])
         section.timed(f"convert {pkg.relative_to(ROOT)}", _sw2sim, "convert", str(pkg), "-o",
                       str(scratch / "converted"))
