@@ -14,14 +14,12 @@ twice writes the same bytes (the course commits the lessons' saved copies).
 
 from __future__ import annotations
 
-import hashlib
 import json
 import shutil
 from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..package import Package, find_package
-from .urdf_carry import carry
 
 FOLDER = "hand_edits"
 SUFFIX = ".saved"   # on every saved copy (copy_of)
@@ -67,6 +65,7 @@ def _text(path: Path) -> str:
 
 
 def _digest(path: Path) -> str:
+    import hashlib   # here: `sw2sim check` reads this module's names and saves nothing
     return hashlib.sha256(path.read_bytes()).hexdigest()
 
 
@@ -101,6 +100,7 @@ def save(path, *, force: bool = False) -> list[str]:
     files = exporter_files(package)
     old = _manifest(folder)
     if old and not force and copy_of(folder, old["urdf"]).is_file() and old["urdf"] in files:
+        from .urdf_carry import carry   # here: `sw2sim check` saves nothing
         missing = carry(_text(copy_of(folder, old["urdf"])),
                         _text(package.root / old["urdf"])).carried
         if missing:
@@ -174,6 +174,7 @@ def restore(path, *, force: bool = False) -> Restored:
         current.parent.mkdir(parents=True, exist_ok=True)
         shutil.copyfile(copy, current)
         result.done.append(f"restored {rel} (the saved copy)")
+    from .urdf_carry import carry   # here: `sw2sim check` restores nothing
     carried = carry(saved_urdf, new_urdf)
     if carried.text != new_urdf:
         (package.root / urdf).write_bytes(carried.text.encode("utf-8"))
