@@ -29,6 +29,7 @@ import time
 import mujoco
 import numpy as np
 
+from ..ros.schedule import Schedule
 from . import config as config_module
 from . import controllers as ctl
 from . import description, hardware
@@ -74,12 +75,14 @@ class Simulation:
                                  1.0 / max(float(m.dof_invweight0[m.jnt_dofadr[j]]), 1e-9))
         self.dt = float(m.opt.timestep)
         self.period = max(1.0 / setup.update_rate, self.dt)
-        self.next_update = 0.0
+        # on exact grids of simulated time, as the controller manager's loop and the
+        # controllers' publishers keep them (sw2sim.ros.schedule)
+        self.updates = Schedule(self.period)
         self.urdf_joints = description.joints(package.robot)
         self.controllers: dict[str, ctl.Controller] = {}
         self.commands: dict[str, dict] = {}
         self.publishers = {}
-        self.next_publish: dict[str, float] = {}
+        self.publishing: dict[str, Schedule] = {}
         self.next_clock = self.next_clock_wall = 0.0
         self.text = package.urdf.read_text(encoding="utf-8")
 
@@ -123,6 +126,7 @@ class Simulation:
             self.controllers[name] = controller
             rate = float(params.get("update_rate") or self.setup.update_rate)
             controller.publish_period = 1.0 / min(rate, CLOCK_HZ)
+            self.publishing[name] = Schedule(controller.publish_period)
             if kind == ctl.JSB:
                 self.publishers[name] = node.create_publisher(JointState, "/joint_states", 10)
             else:
@@ -181,14 +185,14 @@ class Simulation:
         with self.lock:
             m, d = self.model, self.data
             now = float(d.time)
-            if now >= self.next_update - 1e-9:
+            if self.updates.due(now):
                 state = self.state()
                 commands: dict[str, dict] = {}
                 for c in self.controllers.values():
                     for joint, values in c.update(now, self.period, state).items():
                         commands.setdefault(joint, {}).update(values)
                 self.commands = commands
-                self.next_update = now + self.period
+                self.updates.advance(now)
             gain = self.setup.position_proportional_gain * self.setup.update_rate
             for name, (qa, va, a, limit, inertia) in self.places.items():
                 q, v = float(d.qpos[qa]), float(d.qvel[va])
@@ -211,9 +215,10 @@ class Simulation:
             self.next_clock = now + period
             self.next_clock_wall = max(self.next_clock_wall, wall - period / 2) + period
         for name, c in self.controllers.items():
-            if now < self.next_publish.get(name, 0.0) - 1e-9:
+            schedule = self.publishing[name]
+            if not schedule.due(now):
                 continue
-            self.next_publish[name] = now + c.publish_period
+            schedule.advance(now)
             with self.lock:
                 state = self.state()
                 stamp = self._stamp(now)

@@ -4,6 +4,9 @@ from __future__ import annotations
 
 import shutil
 
+import numpy as np
+import pytest
+
 YAML = """\
 controller_manager:
   ros__parameters:
@@ -39,6 +42,11 @@ def test_velocity_commands_and_a_pid_reference(ros2, ported_example_3, tmp_path)
     out = ros2.record("2.5", "--commands", "end_velocity", "0.2",
                       "--reference", "middle_pid", "middle_arm_joint", "0.4",
                       "--state", "middle_pid", "pid")
+    # The broadcaster's 50 a second, on the 20 ms grid of simulated time its controller
+    # manager keeps: a message the recorder missed leaves a gap of 40 ms, never one of 22.
+    gaps = np.diff([s[0] for s in out["states"]])
+    assert np.median(gaps) == pytest.approx(0.02, abs=1e-6), np.unique(gaps.round(4))
+    assert np.allclose(gaps / 0.02, np.round(gaps / 0.02), atol=0.01), np.unique(gaps.round(4))
     t, q, v = out["states"][-1]
     assert abs(v["end_arm_joint"] - 0.2) < 0.01
     earlier = [s for s in out["states"] if s[0] <= t - 0.5][-1]   # moving at 0.2 rad/s
@@ -47,3 +55,21 @@ def test_velocity_commands_and_a_pid_reference(ros2, ported_example_3, tmp_path)
     state = out["controller_state"]["middle_pid"][0]
     assert state["name"] == "middle_arm_joint" and state["reference"] == 0.4
     assert abs(state["error"]) < 0.01
+
+
+def test_a_rate_that_is_no_multiple_of_the_step_keeps_its_grid(ros2, ported_example_3, tmp_path):
+    """30 messages a second on 2 ms steps: each falls on the first step that reaches k/30 s,
+    so that gaps of 32 and 34 ms make 30 a second (counting 33.3 ms on from each message's
+    own step would give gaps of 34 ms, 29.4 a second, drifting off the grid)."""
+    package = tmp_path / "example_3"
+    shutil.copytree(ported_example_3, package)
+    yaml = YAML.replace("joint_state_broadcaster:\n  ros__parameters: {update_rate: 50}",
+                        "joint_state_broadcaster:\n  ros__parameters: {update_rate: 30}")
+    assert yaml != YAML
+    (package / "config" / "controllers.yaml").write_text(yaml)
+    ros2.standin(package)
+    stamps = np.array([s[0] for s in ros2.record("2.0")["states"]])
+    assert len(stamps) > 20
+    step = 0.002   # the simulation's: every stamp is a multiple of it
+    assert np.allclose(stamps / step, np.round(stamps / step), atol=1e-6), stamps[:8]
+    assert np.all(np.abs(stamps * 30 - np.round(stamps * 30)) / 30 <= step + 1e-9), stamps[:8]
