@@ -6,12 +6,14 @@ check them: "label" is a text of the exporter (from its source, see exporter_dia
 "value" an example entry in a field (Practice 1's names), "note" the course's own remarks
 beside the window. The assembly window keeps the Designer's positions and sizes, except
 that its tree, 450 px wide and nearly empty, is drawn narrower and everything to its right
-moved left by as much; the windows are drawn 1:1 on a 736 px wide page.
+moved left by as much; the windows are drawn 1:1 on a 736 px wide page. Their phone
+variants, the same windows cut into parts one above the other, are drawn with these
+functions by course/dialog_schematics_phone.py, which also writes both.
 """
 
 from __future__ import annotations
 
-from pathlib import Path
+from dataclasses import dataclass
 
 from .exporter_dialogs import (ASSEMBLY_FORM, FORM_TITLE, PROPERTY_MANAGER, PROPERTY_MANAGER_TITLE,
                                Control)
@@ -98,7 +100,7 @@ def combo(x, y, w, h, value="", cls="box") -> list[str]:
 BOXES = ("TextBox", "ComboBox", "DomainUpDown")
 
 
-def _absolute(parent: str) -> list[tuple[Control, float, float]]:
+def placed_controls(parent: str) -> list[tuple[Control, float, float]]:
     """The controls under `parent` (and its group boxes), each with its position in the
     window, the tree drawn narrower and what lies right of it moved left."""
     tree = next(c for c in ASSEMBLY_FORM if c.kind == "TreeView" and c.parent == parent)
@@ -129,18 +131,23 @@ def _label_anchor(c: Control, x: float, y: float, placed) -> tuple[float, str]:
     return x, "start"
 
 
-def _assembly_body(parent: str, values: dict[str, str], tree: list[tuple[int, str]],
-                   notes: list[str]) -> tuple[list[str], float, float]:
-    placed = _absolute(parent)
-    view = next(c for c in ASSEMBLY_FORM if c.kind == "TreeView" and c.parent == parent)
-    width = 1073 - (view.w - TREE_W)       # the window's client width, less what the tree gave up
-    height = 634
-    body = [rect(0.5, 0.5, width - 1, height + TITLE_H - 1, "frame"),
+def window_frame(width: float, height: float) -> list[str]:
+    """The window's face and its title bar, `height` the face's below the bar."""
+    return [rect(0.5, 0.5, width - 1, height + TITLE_H - 1, "frame"),
             f'<rect x="0.5" y="0.5" width="{_f(width - 1)}" height="{TITLE_H}" style="fill:#2b579a"/>',
             text(PAD, 16.5, FORM_TITLE[0], "label title")]
-    body = [b.replace('class="label title"', 'class="label title"') for b in body]
+
+
+def draws_nothing(c: Control, values: dict[str, str]) -> bool:
+    """An empty label the example leaves empty: the Designer's placeholder for a text."""
+    return c.kind == "Label" and not c.text and c.name not in values
+
+
+def draw_controls(chosen, placed, values: dict[str, str], tree: list[tuple[int, str]]) -> list[str]:
+    """The controls `chosen` (control, x, y), drawn where `placed` (every control of the
+    window, as `placed_controls` gives them) puts them, the title bar above."""
     out = []
-    for c, x, y in placed:
+    for c, x, y in chosen:
         y += TITLE_H
         ghost = c.hidden
         if c.kind == "TreeView":
@@ -162,7 +169,7 @@ def _assembly_body(parent: str, values: dict[str, str], tree: list[tuple[int, st
                 if c.name in values:
                     out.append(text(x + 6, y + 10, values[c.name], "value"))
                 continue
-            ax, anchor = _label_anchor(c, x, y - TITLE_H, [(o, ox, oy) for o, ox, oy in placed])
+            ax, anchor = _label_anchor(c, x, y - TITLE_H, placed)
             size = 14 if c.bold and c.h >= 17 else None
             cls = "label hidden" if ghost else "label"
             if c.text == "*":
@@ -191,7 +198,21 @@ def _assembly_body(parent: str, values: dict[str, str], tree: list[tuple[int, st
         elif c.kind == "CheckBox":
             out.append(rect(x + 1, y + 2, 12, 12, "box"))
             out.append(text(x + 18, y + 12, c.text))
-    body += out
+    return out
+
+
+def window_width(parent: str) -> float:
+    """The window's client width, less what the tree gave up."""
+    view = next(c for c in ASSEMBLY_FORM if c.kind == "TreeView" and c.parent == parent)
+    return 1073 - (view.w - TREE_W)
+
+
+def _assembly_body(parent: str, values: dict[str, str], tree: list[tuple[int, str]],
+                   notes: list[str]) -> tuple[list[str], float, float]:
+    placed = placed_controls(parent)
+    width = window_width(parent)
+    height = 634
+    body = window_frame(width, height) + draw_controls(placed, placed, values, tree)
     y = height + TITLE_H + 20
     for line in notes:
         body.append(text(4, y, line, "note"))
@@ -220,19 +241,19 @@ LINK_VALUES = {"textBoxMass": "2.6535", "textBoxInertialOriginX": "0", "textBoxI
                "domainUpDownAlpha": "1"}
 
 
+JOINT_NOTES = ["Dashed: the mimic fields, shown once Mimic Other Joint is ticked.",
+               "The joint tree is drawn narrower than the window has it; example entries from Practice 1."]
+LINK_NOTES = ["The link tree is drawn narrower than the window has it; example entries: Practice 1's base, rounded.",
+              "Mesh Format is in the source after release 1.6.1 only."]
+
+
 def joint_window() -> str:
-    body, height, width = _assembly_body(
-        "form", JOINT_VALUES, JOINT_TREE,
-        ["Dashed: the mimic fields, shown once Mimic Other Joint is ticked.",
-         "The joint tree is drawn narrower than the window has it; example entries from Practice 1."])
+    body, height, width = _assembly_body("form", JOINT_VALUES, JOINT_TREE, JOINT_NOTES)
     return document(height, body, "Configure Joint Properties, schematic", width)
 
 
 def link_window() -> str:
-    body, height, width = _assembly_body(
-        "panelLinkProperties", LINK_VALUES, LINK_TREE,
-        ["The link tree is drawn narrower than the window has it; example entries: Practice 1's base, rounded.",
-         "Mesh Format is in the source after release 1.6.1 only."])
+    body, height, width = _assembly_body("panelLinkProperties", LINK_VALUES, LINK_TREE, LINK_NOTES)
     return document(height, body, "Configure Link Properties, schematic", width)
 
 
@@ -247,8 +268,19 @@ def _pm(caption: str, shown: str = "child"):
     return next(c for c in PROPERTY_MANAGER if c.caption == caption and c.shown in (shown, "always"))
 
 
-def property_manager() -> str:
-    x0, w = PANEL_X, PANEL_W
+@dataclass
+class Panel:
+    """The panel drawn `w` wide at `x0`, and where its unlabelled controls are."""
+
+    body: list[str]
+    callouts: list[tuple[float, str, str]]   # (y of the control, caption, tooltip)
+    joint_top: float        # the four joint rows, top and bottom
+    joint_bottom: float
+    height: float
+
+
+def panel(x0: float = PANEL_X, w: float = PANEL_W) -> Panel:
+    """The panel of step 1 with front_left_wheel selected, its controls in the source's order."""
     ix = x0 + 22                 # the indented boxes
     bw = w - 36
     body: list[str] = []
@@ -320,10 +352,24 @@ def property_manager() -> str:
     y += 163 + 10
     height = y + 2
     body[0] = rect(x0, 0.5, w, height - 1, "frame")
+    return Panel(body, callouts, joint_top, joint_bottom, height)
 
+
+def root_rows(x: float, y: float) -> list[str]:
+    """What the panel shows instead of the four joint rows with the root link selected,
+    in a frame 300 wide whose top left corner is (x, y)."""
+    root = _pm("Global Origin Coordinate System", "root")
+    return [rect(x, y, 300, 52, "frame"), text(x + 10, y + 16, root.caption),
+            *combo(x + 24, y + 24, 264, 20, "Origin_global")]
+
+
+def property_manager() -> str:
+    x0, w = PANEL_X, PANEL_W
+    drawn = panel(x0, w)
+    body = drawn.body
     # the callouts: what the source calls the controls that have no label in the panel
     body.append(text(NOTE_X, 66, "No label in the panel; the source calls them:", "note"))
-    for cy, caption, tip in callouts:
+    for cy, caption, tip in drawn.callouts:
         ty = max(cy, 0)
         body.append(path(f"M{x0 + w - 6},{_f(cy)} H{NOTE_X - 6}", "leader"))
         body.append(text(NOTE_X, ty + 4, caption, "label", bold=True))
@@ -332,28 +378,10 @@ def property_manager() -> str:
             if len(tip) >= 52:
                 body.append(text(NOTE_X + 8, ty + 33, tip[tip.rfind(" ", 0, 52) + 1:], "label tip"))
     # the root link's rows
-    body.append(path(f"M{x0 + w - 2},{joint_top - 2} h6 V{joint_bottom} h-6", "leader"))
-    rx, ry = NOTE_X, joint_top + 40
+    body.append(path(f"M{x0 + w - 2},{drawn.joint_top - 2} h6 V{drawn.joint_bottom} h-6", "leader"))
+    rx, ry = NOTE_X, drawn.joint_top + 40
     body.append(text(rx, ry, "With the root link selected, the panel shows", "note"))
     body.append(text(rx, ry + 16, "this instead of the four joint rows:", "note"))
-    root = _pm("Global Origin Coordinate System", "root")
-    body.append(rect(rx, ry + 26, 300, 52, "frame"))
-    body.append(text(rx + 10, ry + 42, root.caption))
-    body += combo(rx + 24, ry + 50, 264, 20, "Origin_global")
-    return document(height, body, "The exporter's property manager panel, schematic")
+    body += root_rows(rx, ry + 26)
+    return document(drawn.height, body, "The exporter's property manager panel, schematic")
 
-
-def write(svg: str, path: Path) -> None:
-    Path(path).write_text(svg, encoding="utf-8")
-
-
-def property_manager_figure(path: Path) -> None:
-    write(property_manager(), path)
-
-
-def joint_window_figure(path: Path) -> None:
-    write(joint_window(), path)
-
-
-def link_window_figure(path: Path) -> None:
-    write(link_window(), path)

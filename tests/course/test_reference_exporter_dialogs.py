@@ -1,19 +1,25 @@
 """The schematics of the exporter's windows use the exporter's own words only, and those words
-(course/exporter_dialogs.py) are the ones its source has, where the list says."""
+(course/exporter_dialogs.py) are the ones its source has, where the list says. Their phone
+variants (course/dialog_schematics_phone.py) show the same words, readable in a phone's
+column."""
 
 import xml.etree.ElementTree as ET
+from collections import Counter
 
 import pytest
 
 from course import dialog_schematics as d
+from course import dialog_schematics_phone as p
 from course import exporter_dialogs as e
+from course.phone import MIN_TEXT_PX, SHOWN_PX
 
 SVG = "{http://www.w3.org/2000/svg}"
 DRAWINGS = {"panel": d.property_manager, "joints": d.joint_window, "links": d.link_window}
+PHONE = {"panel": p.property_manager_phone, "joints": p.joint_window_phone, "links": p.link_window_phone}
 
 
-def texts(svg: str) -> list[tuple[str, str, float]]:
-    """(class, text, font size in px as shown 736 px wide) of every text of a drawing."""
+def texts(svg: str, shown: float = 736) -> list[tuple[str, str, float]]:
+    """(class, text, font size in px as shown `shown` px wide) of every text of a drawing."""
     root = ET.fromstring(svg)
     width = float(root.attrib["viewBox"].split()[2])
     out = []
@@ -23,7 +29,7 @@ def texts(svg: str) -> list[tuple[str, str, float]]:
         cls = t.attrib["class"]
         if "title" in cls:
             size = 12
-        out.append((cls, t.text, size * min(1.0, 736 / width)))
+        out.append((cls, t.text, size * min(1.0, shown / width)))
     return out
 
 
@@ -32,9 +38,10 @@ def known_words() -> set[str]:
             | {e.FORM_TITLE[0]})
 
 
-@pytest.mark.parametrize("name", DRAWINGS)
-def test_every_label_drawn_is_one_of_the_exporters(name):
-    labels = [(cls, t) for cls, t, _ in texts(DRAWINGS[name]()) if cls.split()[0] == "label"]
+@pytest.mark.parametrize("draw", [*DRAWINGS.values(), *PHONE.values()],
+                         ids=[*DRAWINGS, *(f"{name}-phone" for name in PHONE)])
+def test_every_label_drawn_is_one_of_the_exporters(draw):
+    labels = [(cls, t) for cls, t, _ in texts(draw()) if cls.split()[0] == "label"]
     assert labels
     words = known_words()
     # a long tooltip is drawn on two lines: each line is a piece of one of the exporter's words
@@ -53,6 +60,34 @@ def test_the_assembly_windows_show_every_field_the_source_gives_them():
     shown = {t for name in ("joints", "links") for _, t, _ in texts(DRAWINGS[name]())}
     words = {c.text for c in e.ASSEMBLY_FORM if c.text and c.kind != "DomainUpDown"}
     assert words <= shown
+
+
+def shown_words(svg: str) -> tuple[Counter, str]:
+    """What a schematic shows of the window, the course's notes left out: each text with
+    its class, and the tooltips' words in order (their lines break where there is room)."""
+    found = texts(svg)
+    return (Counter((cls, t) for cls, t, _ in found if "note" not in cls and "tip" not in cls),
+            " ".join(t for cls, t, _ in found if "tip" in cls))
+
+
+@pytest.mark.parametrize("name", PHONE)
+def test_on_a_phone_each_window_shows_the_same_words_at_least_9_px_high(name):
+    svg = PHONE[name]()
+    assert shown_words(svg) == shown_words(DRAWINGS[name]())
+    small = [(t, round(size, 1)) for _, t, size in texts(svg, SHOWN_PX) if size < MIN_TEXT_PX]
+    assert not small
+    assert float(ET.fromstring(svg).attrib["viewBox"].split()[2]) == p.WIDTH
+
+
+def test_a_phone_layout_that_leaves_out_a_control_or_draws_one_twice_is_refused():
+    parts = p.JOINT_PARTS
+    with pytest.raises(ValueError, match=r"buttonJointNext \(0 times\)"):
+        p.assembly_phone("form", d.JOINT_VALUES, d.JOINT_TREE, parts[:-1], [], "joints")
+    with pytest.raises(ValueError, match=r"label7 \(2 times\)"):
+        p.assembly_phone("form", d.JOINT_VALUES, d.JOINT_TREE, (parts[0], *parts), [], "joints")
+    wide = p.row(p.Cut(0, 0, 330, 30), p.Cut(535, 115, 705, 162))
+    with pytest.raises(ValueError, match="more than"):
+        p.assembly_phone("form", d.JOINT_VALUES, d.JOINT_TREE, (wide, *parts[1:]), [], "joints")
 
 
 @pytest.fixture(scope="module")

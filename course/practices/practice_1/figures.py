@@ -125,9 +125,12 @@ FIGURES = [
     Figure(f"{MEDIA}/rviz.png", rviz_picture(PACKAGE), [PACKAGE], "Practice 1's robot in RViz, as display.launch opens it"),
 ]
 
-from ...dialog_schematics import joint_window_figure, link_window_figure, property_manager_figure  # noqa: E402
+from ...dialog_schematics_phone import joint_window_figure, link_window_figure, property_manager_figure  # noqa: E402
 FIGURES += [
-    Figure("media/practice-1/exporter_panel.svg", property_manager_figure, [], "The exporter's link tree panel"),
-    Figure("media/practice-1/exporter_joints.svg", joint_window_figure, [], "Configure Joint Properties"),
-    Figure("media/practice-1/exporter_links.svg", link_window_figure, [], "Configure Link Properties"),
+    Figure("media/practice-1/exporter_panel.svg", property_manager_figure, [], "The exporter's link tree panel",
+           phone=True),
+    Figure("media/practice-1/exporter_joints.svg", joint_window_figure, [], "Configure Joint Properties",
+           phone=True),
+    Figure("media/practice-1/exporter_links.svg", link_window_figure, [], "Configure Link Properties",
+           phone=True),
 ]

@@ -11,11 +11,7 @@ Pictures of the simulation carry no text and are not measured.
 
 On a phone a figure with lettering shows its phone variant (course/phone.py), which the
 page offers in a <picture> (_plugins/phone_figures.rb); the test measures the file the
-browser chose. Three figures are pictures of the exporter's windows drawn 1:1
-(course/dialog_schematics.py): a window 760 px wide cannot be laid out again for a phone
-and still look like the window the reader has open, so on a phone their lettering is as
-small as the window's on a phone's screen, and a tap opens them at their own size
-(test_lightbox.py). They are the only figures excused, and the test says so.
+browser chose.
 """
 
 from __future__ import annotations
@@ -31,10 +27,6 @@ LAPTOP = {"width": 1366, "height": 900}
 READABLE_PX = 10.0
 PHONES = [{"width": 360, "height": 780}, {"width": 390, "height": 844}]
 READABLE_ON_A_PHONE_PX = 9.0
-# Pictures of the exporter's windows, 1:1: too small on a phone, opened at their own size
-# on a tap (see the module's docstring).
-WINDOWS = {"/media/practice-1/exporter_panel.svg", "/media/practice-1/exporter_joints.svg",
-           "/media/practice-1/exporter_links.svg"}
 SVG = "{http://www.w3.org/2000/svg}"
 CSS_RULE = re.compile(r"([^{}]+)\{([^}]*)\}")
 
@@ -135,10 +127,10 @@ def test_figure_text_is_readable_at_the_page_width(browser_page, site):
 def test_on_a_phone_every_figure_shows_text_at_least_9_px_high(phone, site):
     """At 390 and 360 px every figure with lettering shows it at least 9 px high: the
     plots' and the drawings' phone variants where the figure has one (all the plots, the
-    drawings wider than a phone's column), the figure itself where it needs none. Only the
-    exporter's windows are excused (see the module's docstring)."""
+    drawings wider than a phone's column, the schematics of the exporter's windows), the
+    figure itself where it needs none."""
     page = phone.page
-    measured, variants, small, excused = 0, set(), [], set()
+    measured, variants, small = 0, set(), []
     try:
         for size in PHONES:
             page.set_viewport_size(size)
@@ -152,9 +144,7 @@ def test_on_a_phone_every_figure_shows_text_at_least_9_px_high(phone, site):
                     if figure["file"] != figure["src"]:
                         variants.add(figure["file"])
                     px = found[1]
-                    if figure["src"] in WINDOWS:
-                        excused.add(figure["src"])
-                    elif px < READABLE_ON_A_PHONE_PX:
+                    if px < READABLE_ON_A_PHONE_PX:
                         small.append(f"{size['width']} px, {path}: {figure['file']} shown "
                                      f"{figure['shown']:.0f} px wide: smallest text {px:.1f} px")
     finally:
@@ -162,7 +152,6 @@ def test_on_a_phone_every_figure_shows_text_at_least_9_px_high(phone, site):
     assert measured >= 2 * 35, measured
     assert all("-phone." in file for file in variants), variants
     assert len(variants) >= 25, f"phone variants shown: {sorted(variants)}"
-    assert excused == WINDOWS, f"excused: {sorted(excused)}; expected {sorted(WINDOWS)}"
     assert not small, "\n".join(small)
 
 
