@@ -4,9 +4,10 @@ MuJoCo 4 decodes binary STL, OBJ and its own MSH; a COLLADA (.dae), PLY or glTF 
 its compile with "no decoder found for mesh file". Packages made for RViz and Gazebo often
 name such files, and many of them carry a readable copy beside each one (`base.dae` and
 `base.STL`, the visual and the collision shape). `stand_in` says what MuJoCo reads instead:
-that copy when there is one, else the file converted to binary STL in memory by trimesh
-(which reads COLLADA through pycollada). The loader uses it, and `sw2sim check` reports the
-same choice as convert's repair, so that the check and the model can never disagree.
+that copy when there is one, else the file converted to binary STL in memory (COLLADA in its
+common simple form by sw2sim.check.collada, anything else by trimesh, which reads COLLADA
+through pycollada). The loader uses it, and `sw2sim check` reports the same choice as
+convert's repair, so that the check and the model can never disagree.
 
 A repository that keeps its meshes in Git LFS, cloned without Git LFS, holds small text
 files in their place; `lfs_pointer` tells them apart, so that the fix named is `git lfs pull`
@@ -94,7 +95,25 @@ def stl_bytes(path: Path) -> bytes:
 
     The whole file becomes one mesh, with the transforms of its scene applied. A COLLADA
     file's <unit meter="..."> is applied too: it says how long one of the file's units is,
-    and a URDF's lengths are metres. Raises Unconvertible with the reason."""
+    and a URDF's lengths are metres. Raises Unconvertible with the reason.
+
+    COLLADA in its common simple form is read by sw2sim.check.collada, without importing
+    trimesh, and written here: the same bytes as trimesh's export of what it reads (an
+    80-byte header of zeros, each face's unit normal from its corners, zero for a face of
+    no area; tests/tool/check/test_collada_reader.py compares them). A COLLADA document
+    that declares a DOCTYPE is not read at all; any other file goes to trimesh."""
+    if path.suffix.lower() == ".dae":
+        from .check.collada import NotSimple, Refused, read_collada
+        try:
+            vertices, faces = read_collada(path.read_bytes())
+        except Refused as exc:
+            raise Unconvertible(str(exc)) from None
+        except (OSError, NotSimple):
+            pass   # trimesh reads it, or says why it cannot
+        else:
+            if not len(faces):
+                raise Unconvertible("it holds no triangles")
+            return _binary_stl(vertices[faces])
     try:
         import collada  # noqa: F401  (trimesh reads COLLADA through pycollada)
     except ImportError:
@@ -111,6 +130,26 @@ def stl_bytes(path: Path) -> bytes:
     if not in_metres(mesh):
         raise Unconvertible(f"its unit, {mesh.units!r}, is not a length")
     return mesh.export(file_type="stl")
+
+
+# Below this length a face's cross product is no direction: zero is its normal (trimesh's
+# tolerance, a hundred times float64's resolution).
+_NO_AREA = 1e-13
+
+
+def _binary_stl(triangles) -> bytes:
+    """Triangles (an n x 3 x 3 numpy array) as binary STL, with trimesh's arithmetic."""
+    import numpy as np   # not at import: mesh_formats is imported where numpy is not needed
+    record = np.dtype([("normal", "<f4", (3,)), ("corners", "<f4", (3, 3)),
+                       ("attribute", "<u2")])
+    crosses = np.cross(triangles[:, 1] - triangles[:, 0], triangles[:, 2] - triangles[:, 1])
+    lengths = np.sqrt(np.dot(crosses * crosses, [1.0, 1.0, 1.0]))
+    valid = lengths > _NO_AREA
+    lengths[valid] **= -1
+    records = np.zeros(len(triangles), dtype=record)
+    records["normal"][valid] = (crosses * lengths.reshape((-1, 1)))[valid]
+    records["corners"] = triangles
+    return bytes(80) + len(triangles).to_bytes(4, "little") + records.tobytes()
 
 
 def in_metres(mesh) -> bool:
