@@ -3,9 +3,10 @@
 `sw2sim check` must answer within half a second, and importing a full mesh library (with
 the scientific stack behind it) takes seconds. The checks only need vertices and faces,
 moved, scaled and merged; the primitives of URDF as closed meshes; and the simple formats
-exporters write: binary STL (the SolidWorks exporter's), text STL and OBJ of triangles.
-`read` decodes those here, and hands anything else (COLLADA, PLY, glTF, an OBJ of quads,
-materials or negative indices, a file these readers do not fully understand) to trimesh,
+exporters write: binary STL (the SolidWorks exporter's), text STL, OBJ of triangles and
+COLLADA of triangles (sw2sim/check/collada.py). `read` decodes those here, and hands
+anything else (PLY, glTF, an OBJ of quads, materials or negative indices, COLLADA with
+quads or instanced nodes, a file these readers do not fully understand) to trimesh,
 imported only then. What the readers here accept, trimesh reads to the same triangles
 (tests/tool/check/test_mesh_readers.py compares them), so a check's verdict never depends
 on which of them read the file.
@@ -234,8 +235,21 @@ def _corner_columns(faces: bytes, count: int) -> tuple[bytes, ...]:
     return _OBJ_FORMS[form]
 
 
+def _dae(data: bytes) -> Mesh | None:
+    """COLLADA in its common simple form (sw2sim/check/collada.py); a document that declares
+    a DOCTYPE is refused (None: no mesh), not handed to trimesh."""
+    from . import collada
+    try:
+        vertices, faces = collada.read_collada(data)
+    except collada.NotSimple:
+        raise _NotSimple from None
+    except collada.Refused:
+        return None
+    return Mesh(vertices, faces)
+
+
 # The readers here, by file extension (any case).
-_READERS = {".stl": _stl, ".obj": _obj}
+_READERS = {".stl": _stl, ".obj": _obj, ".dae": _dae}
 
 
 def _decoded(data: bytes) -> str:

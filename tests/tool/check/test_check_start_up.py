@@ -1,6 +1,6 @@
 """What a `sw2sim check` process loads: no mesh library for the formats the check reads
-itself (binary and text STL, OBJ of triangles: trimesh brings scipy and networkx, seconds
-of start-up), and no OpenGL library, since the check draws nothing. A caller that runs the
+itself (binary and text STL, OBJ and COLLADA of triangles: trimesh brings scipy and
+networkx, seconds of start-up), and no OpenGL library, since the check draws nothing. A caller that runs the
 check inside a process of its own (`main(argv)`: a test, a notebook) keeps its platform,
 since it may draw afterwards."""
 
@@ -71,6 +71,27 @@ def test_an_obj_package_is_read_without_trimesh(tmp_path):
     package = _as_obj(copy_example(3, tmp_path))
     found = _probe(tmp_path, "command", package)
     assert found["status"] == 0 and found["loaded"] == []
+
+
+def _as_collada(package: Path) -> Path:
+    """The package with each binary STL rewritten as COLLADA (by trimesh, here in the test),
+    the STL removed, so that the model too reads the meshes through a conversion."""
+    import trimesh
+    urdf = next((package / "urdf").glob("*.urdf"))
+    text = urdf.read_text()
+    for stl in sorted((package / "meshes").glob("*.STL")):
+        trimesh.load(stl).export(stl.with_suffix(".dae"))
+        stl.unlink()
+        text = text.replace(f"{stl.name}\"", f"{stl.stem}.dae\"")
+    urdf.write_text(text)
+    return package
+
+
+def test_a_collada_package_is_read_without_trimesh(tmp_path):
+    package = _as_collada(copy_example(3, tmp_path))
+    found = _probe(tmp_path, "command", package)
+    # status 1: MuJoCo cannot read COLLADA (mesh-format), which convert repairs
+    assert found["status"] == 1 and found["loaded"] == []
 
 
 @pytest.mark.skipif(not sys.platform.startswith("linux"), reason="OSMesa is Linux's")
