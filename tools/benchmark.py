@@ -11,9 +11,9 @@ for the committed file), `tests` (each test file in a pytest of its own), `comma
 `sw2sim` command in a fresh process, as a user types it: `check` three times on every
 example package and on packages of every shape tools/check_packages.py writes, COLLADA,
 OBJ, text STL, 40 links, 200,000 triangles, with the median and the worst, first as a
-user's `pip install .` runs it (in a venv of its own, .cache/benchmark-user-venv), then in
-the project's .venv; `convert`, `render`), `runner` (every lesson page through the page
-runner, its processes plain and then forked from the fork server, side by side with
+user's `pip install .` runs it (in a venv of its own, ~/.cache/sw2sim/benchmark-user-venv),
+then in the project's .venv; `convert`, `render`), `runner` (every lesson page through the
+page runner, its processes plain and then forked from the fork server, side by side with
 `jupyter nbconvert --execute` over the same pages' notebooks; not in the default set),
 `ros` (the whole test suite as `make test` runs it, with and without tests/ros, in pairs:
 what the ROS tests add; not in the default set, it takes some ten minutes), `ros2` (the
@@ -28,6 +28,7 @@ by the tests.
 import json
 import os
 import resource
+import shutil
 import statistics
 import subprocess
 import sys
@@ -203,8 +204,9 @@ def _sw2sim(*args: str, python: str = sys.executable) -> subprocess.CompletedPro
 # A virtual environment with nothing but the tool, as the README's `python -m pip install .`
 # makes it for a user. The project's .venv holds far more (the course's libraries, Jupyter,
 # ROS's path file, a hundred distributions that MuJoCo's import looks through for plugins),
-# and is installed in editable mode: a check there starts a tenth of a second slower.
-USER_VENV = ROOT / ".cache" / "benchmark-user-venv"
+# and is installed in editable mode. It lies outside the repository, whose tests read every
+# Python file in it; pip's build/ folder is removed after each install.
+USER_VENV = Path.home() / ".cache" / "sw2sim" / "benchmark-user-venv"
 
 
 def user_install() -> str:
@@ -217,6 +219,7 @@ def user_install() -> str:
     subprocess.run([str(python), "-m", "pip", "install", "-q", "."], **quiet)
     subprocess.run([str(python), "-m", "pip", "install", "-q", "--no-deps", "--force-reinstall",
                     "."], **quiet)
+    shutil.rmtree(ROOT / "build", ignore_errors=True)
     return str(python)
 
 
@@ -265,7 +268,8 @@ def commands() -> None:
         packages.update(all_shapes(scratch / "shapes"))
         start = time.perf_counter()
         python = user_install()
-        print(f"{'(pip install . into ' + str(USER_VENV.relative_to(ROOT)) + ', untimed)':60} "
+        where = f"~/{USER_VENV.relative_to(Path.home())}"
+        print(f"{'(pip install . into ' + where + ', untimed)':60} "
               f"{'':9} {time.perf_counter() - start:7.2f} s")
         _timed_checks(packages, python, "as a user installs it")
         _timed_checks(packages, sys.executable, "in the project's .venv")

@@ -52,7 +52,9 @@ def local_modules() -> set[str]:
 
 def _ignored(path: Path) -> bool:
     parts = path.relative_to(ROOT).parts
-    return parts[0] in (".venv", ".venv-ros2", "node_modules", "_site", ".git") or "__pycache__" in parts
+    # (build/ is what `pip install .` leaves, .cache/ what make and the tools keep: copies)
+    return parts[0] in (".venv", ".venv-ros2", "node_modules", "_site", ".git", "build",
+                        ".cache") or "__pycache__" in parts
 
 
 def imported_modules(*folders: str) -> set[str]:
