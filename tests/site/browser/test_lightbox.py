@@ -26,6 +26,9 @@ def _open(browser_page, size):
 
     def click(page):
         page.locator(DRAWING).scroll_into_view_if_needed()
+        # a tap while the lazy picture still loads would cancel its request (a failed
+        # request to the visit); a reader taps the drawing they see
+        page.wait_for_function(f"() => document.querySelector('{DRAWING} img').complete")
         page.locator(DRAWING).click()
         page.wait_for_function("() => document.querySelector('.lightbox-image').complete")
 
