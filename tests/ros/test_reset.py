@@ -134,13 +134,13 @@ def _back(times: list[float]) -> int:
     return drops[0]
 
 
-def _count(times, rate: float, seconds: int) -> int:
-    """How many of `times` fall in `seconds` whole simulated seconds, counted from half a
-    period past a message (a message's time, a sum of steps, may fall either side of a
-    boundary on it)."""
-    times = np.array(times)
-    start = times[0] + 10.5 / rate
-    return int(np.count_nonzero((times >= start) & (times < start + seconds)))
+def _sent_per_second(times) -> float:
+    """Messages per simulated second as the publisher sends them: one over the usual gap
+    between their stamps. A busy machine's subscriber misses some (the publisher's queue
+    drops them), which leaves a double gap; a count would read that as a lower rate."""
+    gaps = np.diff(np.unique(np.round(times, 6)))
+    assert len(gaps) >= 10, f"too few messages: {len(gaps) + 1}"
+    return 1.0 / float(np.median(gaps))
 
 
 def test_the_block_over_ros_resets_as_in_gazebo(ros):
@@ -163,7 +163,7 @@ def test_the_block_over_ros_resets_as_in_gazebo(ros):
     states = [stamp for stamp, _, _ in record["states"]]
     # JointStateController at publish_rate 20, then silent after reset_simulation until
     # the clock passes its old time (stamps never go back)
-    assert abs(_count(states, 20, 2) - 40) <= 1
+    assert abs(_sent_per_second(states) - 20) < 0.2
     assert np.all(np.diff(states) > 0) and states[-1] > marks["old_time"] + 0.5
     controller = record["controller"]
     assert controller[_back(controller)] < 0.2
@@ -181,7 +181,7 @@ def test_the_periodic_force_node_lives_through_a_reset(ros):
     assert clock[_back(clock)] < 0.2
     states = [stamp for stamp, _, _ in record["states"]]
     back = _back(states)
-    assert abs(_count(states[:back], 50, 2) - 100) <= 1
+    assert abs(_sent_per_second(states[:back]) - 50) < 0.5
     _, _, speeds = record["states"][-1]
     assert record["states"][-1][0] >= 2.0 and len(speeds) == 4
     assert all(abs(v - PULSE) < 0.1 for v in speeds.values()), speeds
