@@ -22,21 +22,13 @@ from pathlib import Path
 import numpy as np
 import pytest
 import trimesh
+from mesh_parts import part as _part
 from lxml import etree
 
 from sw2sim.check import collada_reader as collada, trimeshes
 from sw2sim.mesh_formats import Unconvertible, in_metres, stl_bytes
 
 NS = "http://www.collada.org/2005/11/COLLADASchema"
-
-
-def _part() -> trimesh.Trimesh:
-    """A closed part of a few hundred triangles, turned and off the origin, so that its
-    numbers have all their digits."""
-    part = trimesh.creation.annulus(r_min=0.011, r_max=0.03, height=0.017, sections=40)
-    part.apply_transform(trimesh.transformations.euler_matrix(0.3, -1.1, 2.0))
-    part.apply_translation([0.123456789, -0.2, 0.05])
-    return part
 
 
 def _box() -> trimesh.Trimesh:

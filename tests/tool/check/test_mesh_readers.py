@@ -8,17 +8,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 import trimesh
+from mesh_parts import part as _part
 
 from sw2sim.check import trimeshes
-
-
-def _part() -> trimesh.Trimesh:
-    """A closed part with a few hundred triangles, off the origin and turned, so that its
-    numbers have all their digits."""
-    part = trimesh.creation.annulus(r_min=0.011, r_max=0.03, height=0.017, sections=40)
-    part.apply_transform(trimesh.transformations.euler_matrix(0.3, -1.1, 2.0))
-    part.apply_translation([0.123456789, -0.2, 0.05])
-    return part
 
 
 def _obj_text(part: trimesh.Trimesh, form: str, *, header: str = "", crlf: bool = False,
