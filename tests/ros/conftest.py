@@ -85,11 +85,11 @@ class Ros:
         return self.run(sys.executable, str(script), *args, timeout=timeout)
 
     def wait_for_master(self) -> None:
-        master = xmlrpc.client.ServerProxy(self.uri)
         deadline = time.monotonic() + MASTER_TIMEOUT
         while time.monotonic() < deadline:
             try:
-                master.getSystemState("/test")
+                with xmlrpc.client.ServerProxy(self.uri) as master:
+                    master.getSystemState("/test")
                 return
             except OSError:
                 time.sleep(0.1)
@@ -136,7 +136,8 @@ def ros(tmp_path):
         world.start("rosmaster", "--core", "-p", str(world.port), "-w", "3", name="rosmaster")
         world.wait_for_master()
         # roscore's run id: `roslaunch --wait` waits for it
-        xmlrpc.client.ServerProxy(world.uri).setParam("/roscore", "/run_id", str(uuid.uuid1()))
+        with xmlrpc.client.ServerProxy(world.uri) as master:
+            master.setParam("/roscore", "/run_id", str(uuid.uuid1()))
         world.start(ROSOUT, "__name:=rosout", name="rosout")
         yield world
     finally:

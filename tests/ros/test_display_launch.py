@@ -5,7 +5,10 @@ types adapted (sw2sim.ros.launch_fixes), on a virtual screen (Xvfb, one for the 
 For the lessons' five packages and the exporter's three examples: the sliders' window
 (sw2sim.ros.sliders, standing in for joint_state_publisher_gui) is open on the screen,
 /joint_states carries every movable joint of the URDF, robot_state_publisher sends their
-frames on /tf, and no node of the launch stops (RViz included).
+frames on /tf, and no node of the launch stops (RViz included). RViz on Mesa's software
+renderer crashes now and then on a busy machine (a segmentation fault in Ogre, about one
+launch in a few hundred here): a launch whose RViz dies of a signal is said in a warning and
+made once more.
 """
 
 from __future__ import annotations
@@ -17,6 +20,7 @@ import shutil
 import subprocess
 import sys
 import time
+import warnings
 from pathlib import Path
 
 import pytest
@@ -26,7 +30,7 @@ from course import rviz_picture
 from packages import EXAMPLES
 from sw2sim.ros import sliders
 from sw2sim.ros.launch_fixes import adapt
-from sw2sim.ros.run import environment, missing
+from sw2sim.ros.run import environment, missing, stop
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tool" / "check"))
 from exporter_packages import REAL_EXPORTS, write_export  # noqa: E402  (tests/tool/check)
@@ -110,6 +114,21 @@ def shown(display: str, title: re.Pattern) -> list[str]:
     return found
 
 
+# RViz dying of a signal (a segmentation fault, an abort), as roslaunch reports it
+RVIZ_CRASH = re.compile(r"\[rviz-\d+\] process has died \[pid \d+, exit code -\d+")
+
+
+def windows_shown(display: str, windows: dict[str, re.Pattern],
+                  launched: subprocess.Popen) -> dict[str, list[str]]:
+    """{kind: titles} of `windows` on the screen, once all show, after WINDOW_TIMEOUT, or
+    when the launch has ended."""
+    deadline, showing = time.monotonic() + WINDOW_TIMEOUT, {}
+    while len(showing) < len(windows) and time.monotonic() < deadline and launched.poll() is None:
+        time.sleep(0.25)
+        showing = {k: found for k, title in windows.items() if (found := shown(display, title))}
+    return showing
+
+
 @pytest.mark.parametrize("package", [*LESSONS, *REAL_EXPORTS])
 def test_display_launch_opens_the_sliders_and_places_every_joint(package, screen, exported, ros,
                                                                   tmp_path):
@@ -130,25 +149,33 @@ def test_display_launch_opens_the_sliders_and_places_every_joint(package, screen
                "XDG_RUNTIME_DIR": str(home / "runtime")}
     joints = movable(root / "urdf" / f"{root.name}.urdf")
     assert joints, "every example has a joint to move"
-    launched = ros.start("roslaunch", "--wait", str(launch), name="roslaunch")
-    log = ros.logs / "roslaunch.log"
-    # listening from the start: rospy's own start overlaps the launch's
-    probe = ros.start(sys.executable, str(PROBE),
-                      json.dumps({"joints": list(joints), "frames": list(joints.values())}),
-                      name="probe")
-
     # The sliders' window, and RViz's ("urdf.rviz - RViz", or "RViz" without a config file)
     title = sliders.TITLE.format(node="/joint_state_publisher_gui")
     windows = {"sliders": re.compile(re.escape(title)), "RViz": re.compile(r"(.* - )?RViz\*?")}
-    deadline, showing = time.monotonic() + WINDOW_TIMEOUT, {}
-    while len(showing) < len(windows) and time.monotonic() < deadline and launched.poll() is None:
-        time.sleep(0.25)
-        showing = {k: found for k, title in windows.items() if (found := shown(screen, title))}
+    for attempt in (1, 2):
+        suffix = "" if attempt == 1 else f"-{attempt}"
+        launched = ros.start("roslaunch", "--wait", str(launch), name="roslaunch" + suffix)
+        log = ros.logs / f"roslaunch{suffix}.log"
+        # listening from the start: rospy's own start overlaps the launch's
+        probe = ros.start(sys.executable, str(PROBE),
+                          json.dumps({"joints": list(joints), "frames": list(joints.values())}),
+                          name="probe" + suffix)
+        showing = windows_shown(screen, windows, launched)
+        if showing.keys() == windows.keys():
+            heard = probe.wait(timeout=90)
+        crash = RVIZ_CRASH.search(log.read_text(errors="replace"))
+        if not crash or attempt == 2:
+            break
+        # RViz itself crashed (Ogre on Mesa's software renderer does so now and then on a
+        # busy machine): said, and the launch made once more; a second crash fails.
+        warnings.warn(f"{package}: RViz crashed on the virtual screen ({crash[0]}); "
+                      "launching display.launch again")
+        stop(launched, probe)
     assert showing.keys() == windows.keys(), \
         f"windows shown: {showing}\n{log.read_text(errors='replace')[-3000:]}"
 
-    assert probe.wait(timeout=90) == 0
-    report = (ros.logs / "probe.log").read_text(errors="replace")
+    assert heard == 0
+    report = (ros.logs / f"probe{suffix}.log").read_text(errors="replace")
     seen = json.loads(report.splitlines()[-1])
     assert set(seen["joints"]) == set(joints), seen["joints"]
     assert seen["publishers"] == ["/joint_state_publisher_gui"]
