@@ -14,7 +14,6 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import mujoco
-import yaml
 
 from .package import LoadError, Package, as_package
 from .xmlsafe import source_line
@@ -125,6 +124,8 @@ def add_motors(spec: mujoco.MjSpec, source: str | os.PathLike | Package) -> list
 
 def read_controllers(path: str | os.PathLike) -> dict:
     """The controller configuration (the YAML a launch file loads with `<rosparam>`)."""
+    import yaml   # here: `sw2sim check` reads no YAML, and the import costs it 15-30 ms
+
     path = Path(path)
     try:
         with open(path, encoding="utf-8") as f:
