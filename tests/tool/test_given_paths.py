@@ -2,6 +2,7 @@
 Windows, PowerShell and macOS make them), the folder a download or a clone wraps around
 it, or the package's urdf/ folder."""
 
+import json
 import os
 import subprocess
 import sys
@@ -64,6 +65,27 @@ def test_the_command_converts_a_zip_and_leaves_no_unpacked_copy(tmp_path):
     assert done.returncode == 0, done.stdout + done.stderr
     assert (tmp_path / "model" / "scene.xml").is_file()
     assert list(scratch.iterdir()) == [], "the unpacked copy is removed when the command ends"
+
+
+def test_the_check_command_ends_with_its_whole_report_its_status_and_no_unpacked_copy(tmp_path):
+    """`sw2sim check` ends its process as soon as the report is out (sw2sim.cli._end_now):
+    the report still arrives whole through a pipe, the status is the worst package's, and
+    the zips' unpacked copies are gone."""
+    package = copy_example(4, tmp_path / "export")
+    edit(urdf_of(package), 'effort="', 'effort="-')    # an error: status 1
+    zips = [zipped(package, tmp_path / f"class_{n}.zip") for n in range(3)]
+    scratch = tmp_path / "tmp"
+    scratch.mkdir()
+    env = {**os.environ, "TMPDIR": str(scratch)}
+    done = subprocess.run([sys.executable, "-m", "sw2sim", "check", "--json", *map(str, zips),
+                           str(copy_example(1, tmp_path / "clean"))], capture_output=True,
+                          text=True, env=env, timeout=120)
+    assert done.returncode == 1, done.stderr
+    reports = json.loads(done.stdout)
+    assert [r["status"] for r in reports] == [1, 1, 1, 0]
+    assert [Path(r["path"]).name for r in reports] == ["example_4"] * 3 + ["example_1"]
+    assert reports[-1]["stability"]["steps"] > 0
+    assert list(scratch.iterdir()) == [], "the unpacked copies are removed when the command ends"
 
 
 def test_a_zip_that_names_files_outside_it_is_refused_before_anything_is_written(tmp_path):

@@ -18,19 +18,31 @@ from packages import copy_example
 from sw2sim.check import trimeshes
 
 # Runs `sw2sim check` as the command line does (main() reading sys.argv) or as a caller
-# does (main(argv)), then writes what the process holds to the file named first.
+# does (main(argv)), then writes what the process holds to the file named first. The
+# command line's check ends its process at once (sw2sim.cli._end_now): the record is
+# written as it calls os._exit, and says so.
 PROBE = """
 import json, os, sys
 out, how, path = sys.argv[1:4]
 before = os.environ.get("MUJOCO_GL")
 sys.argv = ["sw2sim", "check", path]
+
+def record(status, ended_at_once):
+    import mujoco
+    loaded = sorted({m.split(".")[0] for m in sys.modules} & {"trimesh", "scipy", "networkx", "OpenGL"})
+    with open(out, "w") as f:
+        json.dump({"status": status, "loaded": loaded, "before": before,
+                   "after": os.environ.get("MUJOCO_GL"), "draws": hasattr(mujoco, "GLContext"),
+                   "ended_at_once": ended_at_once}, f)
+
+exit_now = os._exit
+def ending(status):
+    record(status, True)
+    exit_now(status)
+os._exit = ending
 from sw2sim.cli import main
 status = main() if how == "command" else main(["check", path])
-import mujoco
-loaded = sorted({m.split(".")[0] for m in sys.modules} & {"trimesh", "scipy", "networkx", "OpenGL"})
-with open(out, "w") as f:
-    json.dump({"status": status, "loaded": loaded, "before": before,
-               "after": os.environ.get("MUJOCO_GL"), "draws": hasattr(mujoco, "GLContext")}, f)
+record(status, False)
 """
 
 
@@ -61,7 +73,7 @@ def _as_obj(package: Path) -> Path:
 def test_the_command_loads_neither_a_mesh_library_nor_opengl(tmp_path):
     package = copy_example(1, tmp_path)
     found = _probe(tmp_path, "command", package)
-    assert found["status"] == 0
+    assert found["status"] == 0 and found["ended_at_once"]
     assert found["loaded"] == []
     assert not found["draws"], "MuJoCo was imported with drawing turned off"
     assert found["after"] == found["before"], "the platform chosen for drawing is put back"
@@ -99,6 +111,6 @@ def test_a_caller_of_main_keeps_its_platform(tmp_path):
     package = copy_example(4, tmp_path)
     env = {**os.environ, "MUJOCO_GL": "osmesa"}
     found = _probe(tmp_path, "argv", package, env)
-    assert found["status"] == 0
+    assert found["status"] == 0 and not found["ended_at_once"], "main(argv) returns"
     assert found["draws"] and "OpenGL" in found["loaded"]
     assert found["after"] == "osmesa"
