@@ -24,6 +24,7 @@ from course.snippets import find_pages, parse_page
 from course.snippets.ros import RosBlockError, Session
 from page_text import flat_page
 from repository import ROOT
+from stamp_rate import sent_per_second
 
 RECORD = Path(__file__).with_name("record.py")
 PAGES = [p for p in find_pages(ROOT) if parse_page(p, ROOT).ros_blocks]
@@ -84,13 +85,7 @@ def _rate(record: dict, field: str = "states") -> float:
     between the messages' stamps. (A publisher's queue drops messages that a slow
     subscriber has not taken, as real ROS does; a drop leaves a double gap, which a count
     would read as a lower rate.)"""
-    return _stamp_rate([row[0] for row in record[field]])
-
-
-def _stamp_rate(stamps: list[float]) -> float:
-    gaps = np.diff(np.unique(np.round(stamps, 6)))
-    assert len(gaps) >= 10, f"too few messages: {len(gaps) + 1}"
-    return 1.0 / float(np.median(gaps))
+    return sent_per_second([row[0] for row in record[field]])
 
 
 PULSE_PAGE = "_pages/practice-1/05-custom-node.md"
@@ -165,7 +160,7 @@ def _arm_goes_to_the_command(record: dict, session) -> None:
     stamps = [int(secs) + int(nsecs) / 1e9 for secs, nsecs in
               re.findall(r"^\s+secs: (\d+)\n\s+nsecs: +(\d+)$", echoed, re.M)]
     assert len(stamps) > 10, echoed[-500:]
-    state_rate = _stamp_rate(stamps)
+    state_rate = sent_per_second(stamps)
     assert abs(state_rate - here) < 0.02 * here, state_rate
     last = dict(re.findall(r"^(set_point|process_value|error): (\S+)$", messages[-1], re.M))
     assert float(last["set_point"]) == target, last

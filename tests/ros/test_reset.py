@@ -16,6 +16,7 @@ import pytest
 
 from offline import call, run, stamps, start
 from packages import EXAMPLES
+from stamp_rate import sent_per_second
 from sw2sim.ros.run import missing
 
 pytestmark = pytest.mark.skipif(bool(missing()), reason=str(missing()))
@@ -134,15 +135,6 @@ def _back(times: list[float]) -> int:
     return drops[0]
 
 
-def _sent_per_second(times) -> float:
-    """Messages per simulated second as the publisher sends them: one over the usual gap
-    between their stamps. A busy machine's subscriber misses some (the publisher's queue
-    drops them), which leaves a double gap; a count would read that as a lower rate."""
-    gaps = np.diff(np.unique(np.round(times, 6)))
-    assert len(gaps) >= 10, f"too few messages: {len(gaps) + 1}"
-    return 1.0 / float(np.median(gaps))
-
-
 def test_the_block_over_ros_resets_as_in_gazebo(ros):
     """Practice 4 under roslaunch: with physics paused, reset_world puts the block back at
     0 and keeps the time; the block returns to its 1.5 m command; reset_simulation puts it
@@ -163,7 +155,7 @@ def test_the_block_over_ros_resets_as_in_gazebo(ros):
     states = [stamp for stamp, _, _ in record["states"]]
     # JointStateController at publish_rate 20, then silent after reset_simulation until
     # the clock passes its old time (stamps never go back)
-    assert abs(_sent_per_second(states) - 20) < 0.2
+    assert abs(sent_per_second(states) - 20) < 0.2
     assert np.all(np.diff(states) > 0) and states[-1] > marks["old_time"] + 0.5
     controller = record["controller"]
     assert controller[_back(controller)] < 0.2
@@ -181,7 +173,7 @@ def test_the_periodic_force_node_lives_through_a_reset(ros):
     assert clock[_back(clock)] < 0.2
     states = [stamp for stamp, _, _ in record["states"]]
     back = _back(states)
-    assert abs(_sent_per_second(states[:back]) - 50) < 0.5
+    assert abs(sent_per_second(states[:back]) - 50) < 0.5
     _, _, speeds = record["states"][-1]
     assert record["states"][-1][0] >= 2.0 and len(speeds) == 4
     assert all(abs(v - PULSE) < 0.1 for v in speeds.values()), speeds
