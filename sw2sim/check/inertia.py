@@ -22,7 +22,7 @@ from .findings import ERROR, WARNING, rule
 from .geometry import (Inertial, Tree, enclosed_volume, inertial_of, link_geometry,
                        origin_matrix)
 from .repairs import balanced, repair, write_inertial, write_tensor
-from .trimeshes import hull, hull_planes, hull_volume
+from .trimeshes import corners, hull, hull_planes, hull_volume
 
 # MuJoCo's smallest mass or principal moment of inertia (mjMINVAL).
 MJMINVAL = 1e-15
@@ -419,7 +419,8 @@ def _placement(ctx, link, inertial: Inertial) -> None:
         return
     points = np.vstack([p.mesh.vertices for p in pieces])
     outside = _distance_outside(points, inertial.centre)
-    size = float(np.linalg.norm(np.ptp(points, axis=0)))
+    low, high = corners(points)
+    size = float(np.linalg.norm(high - low))
     margin = max(0.001, 0.05 * size)
     if outside > margin:
         x, y, z = inertial.centre
@@ -459,5 +460,5 @@ def _distance_outside(points: np.ndarray, centre: np.ndarray) -> float:
     planes = hull_planes(points)   # outward normal n and offset d: n.x + d <= 0 inside
     if planes is not None and len(planes):
         return max(0.0, float((planes[:, :3] @ centre + planes[:, 3]).max()))
-    low, high = points.min(axis=0), points.max(axis=0)   # flat points: the bounding box
+    low, high = corners(points)   # flat points: the bounding box
     return float(np.linalg.norm(np.maximum(0, np.maximum(low - centre, centre - high))))

@@ -180,3 +180,16 @@ def test_merging_keeps_numpy_unique_s_vertices_and_order():
     assert np.array_equal(mesh.vertices, vertices[first])
     assert np.array_equal(mesh.faces, inverse.reshape(-1)[faces])
     assert np.array_equal(mesh.triangles.round(8), vertices[faces].round(8))
+
+
+def test_a_mesh_s_box_is_numpy_s_min_and_max():
+    """Mesh.bounds and Mesh.extents read each column on its own; numpy's axis=0 reductions
+    are what they replaced, number for number (NaN included)."""
+    rng = np.random.default_rng(5)
+    for points in (rng.uniform(-3, 2, (1000, 3)), np.array([[1.0, -2.0, 3.0]]),
+                   np.array([[0.0, np.nan, 1.0], [-1.0, 2.0, np.inf]])):
+        mesh = trimeshes.Mesh(points, np.zeros((0, 3)))
+        expected = np.array([points.min(axis=0), points.max(axis=0)])
+        assert np.array_equal(mesh.bounds, expected, equal_nan=True)
+        assert np.array_equal(mesh.extents, np.ptp(points, axis=0), equal_nan=True)
+    assert np.array_equal(trimeshes.Mesh(np.zeros((0, 3)), np.zeros((0, 3))).extents, np.zeros(3))
