@@ -169,8 +169,8 @@ def _obj(data: bytes) -> Mesh:
     if b"\\" in data or b"\t" in data or data.count(b"\r") != data.count(b"\r\n"):
         raise _NotSimple   # continued lines, tabs, old Mac line ends: trimesh's own ways
     text = b"\n" + data.replace(b"\r\n", b"\n")
-    counts = {key: text.count(b"\n" + key) for key in _OBJ_STATEMENTS}
-    if sum(counts.values()) + _empty_lines(text) != text.count(b"\n") \
+    counts, empty, lines = _statement_counts(text)
+    if sum(counts.values()) + empty != lines \
             or counts[b"usemtl "] > 1 or data.count(b"usemtl") != counts[b"usemtl "] \
             or not counts[b"f "] or not counts[b"v "]:
         raise _NotSimple   # another statement; materials, or "usemtl" in a name
@@ -216,11 +216,25 @@ def _statements(text: bytes, key: bytes, count: int) -> bytes:
                     if line[:len(key)] == key)
 
 
-def _empty_lines(text: bytes) -> int:
-    """The lines of `text` (each begun by a newline) with nothing on them."""
+_HEAD = max(len(key) for key in _OBJ_STATEMENTS)
+
+
+def _statement_counts(text: bytes) -> tuple[dict[bytes, int], int, int]:
+    """How many lines of `text` (each begun by a newline) begin with each of
+    _OBJ_STATEMENTS, how many are empty, and how many there are: the first bytes of every
+    line compared at once (`text.count` for each statement reads the whole file ten times)."""
     chars = np.frombuffer(text, dtype=np.uint8)
-    newline = chars == ord("\n")
-    return int(np.count_nonzero(newline[:-1] & newline[1:])) + bool(newline[-1])
+    starts = np.flatnonzero(chars == ord("\n")) + 1
+    padded = np.concatenate([chars, np.zeros(_HEAD, dtype=np.uint8)])   # the last line's
+    heads = [padded[starts + n] for n in range(_HEAD)]   # each line's n-th byte
+    counts = {}
+    for key in _OBJ_STATEMENTS:
+        match = heads[0] == key[0]
+        for n in range(1, len(key)):
+            match &= heads[n] == key[n]
+        counts[key] = int(np.count_nonzero(match))
+    empty = int(np.count_nonzero(heads[0] == ord("\n"))) + bool(starts[-1] == len(chars))
+    return counts, empty, len(starts)
 
 
 def _corner_columns(faces: bytes, count: int) -> tuple[bytes, ...]:
@@ -232,11 +246,14 @@ def _corner_columns(faces: bytes, count: int) -> tuple[bytes, ...]:
             or b"\n " in faces or faces.startswith(b" "):
         raise _NotSimple
     ends = np.flatnonzero(chars == ord("\n"))
-    spaces = np.cumsum(chars == ord(" "))[ends]
-    if len(ends) != count or (np.diff(spaces, prepend=0) != 2).any():
+    spaces = np.flatnonzero(chars == ord(" "))
+    if len(ends) != count or len(spaces) != 2 * count \
+            or (np.bincount(np.searchsorted(ends, spaces), minlength=count) != 2).any():
         raise _NotSimple   # quads and polygons
-    starts = np.flatnonzero(np.r_[True, (chars[:-1] == ord(" ")) | (chars[:-1] == ord("\n"))])
-    slashes = np.add.reduceat(chars == ord("/"), starts)
+    # each corner's first character, and the slashes in each corner
+    starts = np.sort(np.r_[0, spaces + 1, ends[:-1] + 1])
+    slashes = np.bincount(np.searchsorted(starts, np.flatnonzero(chars == ord("/")),
+                                          side="right") - 1, minlength=len(starts))
     stops = np.r_[starts[1:] - 2, len(chars) - 2]
     first, adjacent = int(slashes[0]), faces.count(b"//")
     form = (first, adjacent > 0)

@@ -193,3 +193,17 @@ def test_a_mesh_s_box_is_numpy_s_min_and_max():
         assert np.array_equal(mesh.bounds, expected, equal_nan=True)
         assert np.array_equal(mesh.extents, np.ptp(points, axis=0), equal_nan=True)
     assert np.array_equal(trimeshes.Mesh(np.zeros((0, 3)), np.zeros((0, 3))).extents, np.zeros(3))
+
+
+@pytest.mark.parametrize("text", [
+    b"\nv 1 2 3\nv 4 5 6\n\nf 1 2 3\n",
+    b"\n# made by hand\nmtllib a.mtl\nusemtl steel\no part\ng all\ns off\nvn 0 0 1\nvt 0 0\nf 1/1/1 2/2/1 3/3/1",
+    b"\n\n\nv 1 2 3\nvv 1\nf\n fv 1 2 3\n\n",
+    b"\nv",
+])
+def test_the_obj_reader_counts_statements_as_a_search_of_the_text_does(text):
+    """The line heads compared at once (_statement_counts) give what `bytes.count` gives."""
+    counts, empty, lines = trimeshes._statement_counts(text)
+    assert counts == {key: text.count(b"\n" + key) for key in trimeshes._OBJ_STATEMENTS}
+    assert lines == text.count(b"\n")
+    assert empty == sum(1 for line in text.split(b"\n")[1:] if not line)
