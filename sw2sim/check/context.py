@@ -103,6 +103,8 @@ class Context:
         self.path = Path(source)
         self.report = Report(path=str(source))
         self._meshes: dict[Path, object] = {}
+        self._contents: dict[Path, object] = {}    # each mesh file's content_key
+        self._by_content: dict[object, object] = {}
         self._mesh_files: dict[str, Path | None] = {}
         self._files: list[Path] | None = None
 
@@ -185,7 +187,12 @@ class Context:
         if path is None:
             return None
         if path not in self._meshes:
-            self._meshes[path] = _read_mesh(path)
+            # Files with the same bytes (the exporter writes one per link: four wheels, four
+            # files) are read once, and share one Mesh: measured and merged once too.
+            key = self._contents[path] = content_key(path)
+            if key not in self._by_content:
+                self._by_content[key] = _read_mesh(path)
+            self._meshes[path] = self._by_content[key]
         loaded = self._meshes[path]
         if loaded is None:
             return None
@@ -199,6 +206,26 @@ class Context:
             loaded = loaded.copy()
             loaded.apply_scale(scale)
         return loaded
+
+
+    def mesh_content(self, mesh: etree._Element):
+        """What stands for the file a <mesh> names (`content_key`): equal for two files with
+        the same bytes; None when the file cannot be found."""
+        path = self.mesh_file(mesh)
+        if path is None:
+            return None
+        if path not in self._contents:
+            self.mesh(mesh)
+        return self._contents.get(path, path)
+
+
+def content_key(path: Path):
+    """A file's bytes, which a dict hashes once and compares in full; the path itself when
+    it cannot be read (reading it fails again, and is reported, where the mesh is read)."""
+    try:
+        return path.read_bytes()
+    except OSError:
+        return path
 
 
 def in_folder_given(filename: str, name: str) -> str:

@@ -104,7 +104,8 @@ def origin_matrix(element) -> np.ndarray | None:
 
 
 # Each context's meshes with their vertices merged (the context reads them unmerged), by
-# file and scale: closed meshes are then recognised as closed, and merging is done once.
+# file content and scale: closed meshes are then recognised as closed, and merging is done
+# once for all the files of the same bytes.
 _merged: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
 
 
@@ -112,7 +113,7 @@ def _shape_mesh(ctx, link, shape) -> Mesh | None:
     """The shape as a mesh in its own frame (shared: copy it before changing it)."""
     if shape.tag == "mesh":
         cache = _merged.setdefault(ctx, {})
-        key = (ctx.mesh_file(shape), shape.get("scale"))
+        key = (ctx.mesh_content(shape), shape.get("scale"))   # files of the same bytes: once
         if key not in cache:
             mesh = ctx.mesh(shape)
             # One beyond MuJoCo's limit is not measured (below): merging it would be wasted.

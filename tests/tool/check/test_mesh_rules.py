@@ -297,3 +297,36 @@ def test_a_thin_plate_is_not_flat_but_a_plane_is():
     assert _flatness(tilted) is None
     plane = np.column_stack([plate[:, :2], np.zeros(len(plate))])
     assert _flatness(plane) and _flatness(plate[:3])
+
+
+def test_files_of_the_same_bytes_are_read_once_and_each_is_still_reported(tmp_path):
+    """Example 1's four wheels are four files of the same bytes: one Mesh for all of them
+    (read, merged and measured once); a fault in them is still reported for each file, and
+    a wheel file changed by a byte is a mesh of its own."""
+    from sw2sim.check import open_package
+    package = copy_example(1, tmp_path / "same")
+    wheels = sorted((package / "meshes").glob("*wheel.STL"))
+    assert len(wheels) == 4 and len({w.read_bytes() for w in wheels}) == 1
+    ctx = open_package(package)
+    meshes = {w.name: ctx.mesh(el) for el in ctx.robot.iter("mesh")
+              for w in wheels if el.get("filename").endswith("/" + w.name)}
+    assert len(meshes) == 4 and len({id(m) for m in meshes.values()}) == 1
+
+    changed = copy_example(1, tmp_path / "changed")
+    wheel = changed / "meshes" / wheels[0].name
+    data = bytearray(wheel.read_bytes())
+    data[0] ^= 1   # the header: the same triangles, other bytes
+    wheel.write_bytes(bytes(data))
+    ctx = open_package(changed)
+    read = {el.get("filename"): ctx.mesh(el) for el in ctx.robot.iter("mesh")
+            if "wheel" in el.get("filename")}
+    assert len({id(m) for m in read.values()}) == 2
+
+    # every wheel file the same text STL: four files, a finding for each
+    text = copy_example(1, tmp_path / "text")
+    ascii_stl = trimesh.load(str(wheels[0]), force="mesh").export(file_type="stl_ascii")
+    for wheel in sorted((text / "meshes").glob("*wheel.STL")):
+        wheel.write_text(ascii_stl)
+    found = [f for f in check(text).findings if f.rule == "mesh-ascii-stl"]
+    assert len(found) == 4 and all(sum(w.name in f.message for f in found) == 1
+                                   for w in wheels), [f.message for f in found]
