@@ -32,10 +32,14 @@ def test_an_independent_node_drives_the_arm_and_sees_mujocos_kinematics(ros2, po
     assert out["clock"] == sorted(out["clock"]) and out["clock"][-1] > out["clock"][0] + 3.5
     t, q, v = out["states"][-1]
     assert abs(q["middle_arm_joint"] - 0.5) < 0.01 and abs(q["end_arm_joint"] + 0.3) < 0.01
-    # on the way for about the trajectory's 2 s (a linear reference), not a jump to it
-    began = next(s[0] for s in out["states"] if s[1]["middle_arm_joint"] > 0.05)
-    arrived = next(s[0] for s in out["states"] if s[1]["middle_arm_joint"] > 0.45)
-    assert 1.5 < arrived - began < 2.2
+    # on the way for about the trajectory's 2 s (a linear reference), not a jump to it: the
+    # pace of the states heard between 10 % and 90 % of the way (a busy machine's recorder
+    # misses messages, so the first one heard past a mark may come late)
+    ramp = np.array([(s[0], s[1]["middle_arm_joint"]) for s in out["states"]
+                     if 0.05 < s[1]["middle_arm_joint"] < 0.45])
+    assert len(ramp) >= 3 and np.ptp(ramp[:, 0]) > 0.3, ramp
+    pace = np.polyfit(ramp[:, 0], ramp[:, 1], 1)[0]   # rad per simulated second
+    assert 1.8 < 0.5 / pace < 2.2, (pace, ramp)
     # /robot_description is the URDF; /tf_static holds the fixed joint
     assert out["description"] == (ported_example_3 / "urdf" / "example_3.urdf").read_text()
     assert ["world", "base_link"] == out["tf_static"][0][:2]
