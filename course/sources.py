@@ -35,7 +35,13 @@ REPOSITORIES = {"solidworks_urdf_exporter": "ros/solidworks_urdf_exporter",
                 "gazebo_ros_control": "ros-simulation/gazebo_ros_pkgs",
                 "ros_control": "ros-controls/ros_control",
                 "ros_controllers": "ros-controls/ros_controllers",
-                "gz_ros2_control": "ros-controls/gz_ros2_control"}
+                "gz_ros2_control": "ros-controls/gz_ros2_control",
+                "ros2_control": "ros-controls/ros2_control",
+                "ros2_controllers": "ros-controls/ros2_controllers",
+                "control_toolbox": "ros-controls/control_toolbox",
+                "robot_state_publisher": "ros/robot_state_publisher",
+                "ros_gz": "gazebosim/ros_gz",
+                "rclpy": "ros2/rclpy"}
 # A link to lines of a file at a tag or branch: blob/<ref>/<file>#L<a>[-L<b>].
 URL = re.compile(r"^https://github\.com/(?P<repo>[\w.-]+/[\w.-]+)/blob/(?P<ref>[\w.-]+)/"
                  r"(?P<file>[^#\s]+)#L(?P<first>\d+)(?:-L(?P<last>\d+))?$")
