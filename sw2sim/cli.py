@@ -204,7 +204,10 @@ into the folder OUT (the package's folder: put it in a workspace's src/):
   urdf/NAME.urdf           a <ros2_control> block (gz_ros2_control) in place of the
                            transmissions and the gazebo_ros_control plugin
   config/controllers.yaml  each ROS 1 controller's ROS 2 counterpart, and
-                           joint_state_broadcaster
+                           joint_state_broadcaster; an export with no transmissions and
+                           no controllers gets joint_trajectory_controller (position) for
+                           its joints and wheel_velocity_controller (velocity) for its
+                           wheels, unless --no-controllers
   launch/display.launch.py, launch/gazebo.launch.py   RViz; Gazebo Sim with the controllers
   README.md                how to build and run it, and every choice made for you
 Each choice is also printed. The source is never changed. OUT must be new, empty, or
@@ -461,6 +464,9 @@ def _parser() -> argparse.ArgumentParser:
     port.add_argument("--effort-joints", metavar="NAME[,NAME...]", action="append", default=[],
                       help="joints without a transmission to drive with an effort command, "
                            "together, by effort_controller (JointGroupEffortController)")
+    port.add_argument("--no-controllers", dest="default_controllers", action="store_false",
+                      help="give an export without transmissions and controllers none: its "
+                           "joints then only report their state")
     port.add_argument("--urdf", metavar="NAME", help="which URDF to read, where the package "
                       "holds several (its file name)")
     port.set_defaults(command="port", run=_port)
@@ -655,7 +661,8 @@ def _port(args) -> int:
     from .port import PortError, port
     try:
         package = find_package(args.path, urdf=args.urdf)
-        report = port(package, args.output, name=args.name, effort_joints=args.effort_joints)
+        report = port(package, args.output, name=args.name, effort_joints=args.effort_joints,
+                      default_controllers=args.default_controllers)
     except (LoadError, PortError) as exc:
         _say(f"sw2sim port: {exc}")
         return EXIT_UNUSABLE

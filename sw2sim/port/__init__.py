@@ -4,7 +4,9 @@
     CMakeLists.txt           installs the folders into share/<name> (cmake.py)
     urdf/<name>.urdf         ros2_control and gz_ros2_control instead of transmissions and
                              gazebo_ros_control; mesh paths in the new name (urdf.py)
-    config/controllers.yaml  the ROS 1 controllers' ROS 2 counterparts (controllers.py)
+    config/controllers.yaml  the ROS 1 controllers' ROS 2 counterparts (controllers.py); for an
+                             export that commands nothing, a trajectory controller and a
+                             wheel velocity controller (defaults.py)
     launch/*.launch.py       RViz, and Gazebo Sim with the controllers (launch.py)
     rviz/<file>.rviz         the package's RViz configuration, for RViz 2 (rviz.py)
     meshes/                  copied as they are
@@ -27,7 +29,7 @@ from pathlib import Path
 from .. import mesh_paths
 from ..archive import shown
 from ..package import Package, as_package
-from . import cmake, controllers, launch, manifest, naming, rviz, urdf
+from . import cmake, controllers, defaults, launch, manifest, naming, rviz, urdf
 from .readme import readme
 
 MARKER = ".sw2sim-port"   # names the files an earlier port wrote, so it may be replaced
@@ -65,8 +67,13 @@ class PortReport:
 
 
 def port(source: str | os.PathLike | Package, out: str | os.PathLike, *,
-         name: str | None = None, effort_joints=()) -> PortReport:
+         name: str | None = None, effort_joints=(), default_controllers: bool = True
+         ) -> PortReport:
     """Write the ROS 2 package for the ROS 1 package at `source` into the folder `out`.
+
+    A package with no transmissions and no ROS 1 controllers (an export as the exporter
+    writes it) gets a controller for each movable joint that --effort-joints does not name
+    (sw2sim.port.defaults), unless `default_controllers` is False.
 
     Raises sw2sim.LoadError when the source cannot be read, PortError when `out` or an
     option cannot be used; nothing is written then. `out` must be missing, empty, or an
@@ -100,7 +107,14 @@ def port(source: str | os.PathLike | Package, out: str | os.PathLike, *,
         raise PortError(f"{exc}. Leave the joint out of --effort-joints, or remove one of the "
                         "controllers from the ROS 1 YAML.") from None
     planned.sources = read
-    commands = _commands(transmissions, planned, joints, effort, choices)
+    added = defaults.Defaults()
+    ros1_commanded = {j for c in planned.controllers for j in c.commands} - set(effort)
+    if default_controllers and defaults.applies(robot, ros1_commanded):
+        added = defaults.plan(robot, joints, set(effort), urdf_rel)
+        planned.controllers += added.controllers
+        planned.choices += added.choices
+    commands = _commands(transmissions, planned, joints, effort, choices,
+                         {c.name for c in added.controllers})
     rewritten = urdf.rewrite(tree, package, new_name, commands, list(joints))
     choices += transmissions.choices + planned.choices + rewritten.choices
 
@@ -115,7 +129,8 @@ def port(source: str | os.PathLike | Package, out: str | os.PathLike, *,
                        "it is; Gazebo, RViz and MuJoCo show nothing for it. Export the part "
                        "again (`sw2sim check` on the source says how).")
     files[f"urdf/{new_name}.urdf"] = rewritten.text
-    files["config/controllers.yaml"] = controllers.yaml_text(planned, new_name)
+    files["config/controllers.yaml"] = controllers.yaml_text(
+        planned, new_name, [c.name for c in added.controllers])
     rviz_file = rviz.find(package.root)
     if rviz_file is not None:
         text = rviz_file.read_text(encoding="utf-8", errors="replace")
@@ -137,7 +152,8 @@ def port(source: str | os.PathLike | Package, out: str | os.PathLike, *,
     files["CMakeLists.txt"] = cmake.cmakelists(new_name, folders)
     order = ["package.xml", "CMakeLists.txt", "README.md"]
     listed = order + sorted(f for f in files if f not in order)
-    files["README.md"] = readme(new_name, package.name, planned.names, choices, listed)
+    files["README.md"] = readme(new_name, package.name, planned.names, choices, listed,
+                                added.usage)
 
     replaced = _write(out, files)
     return PortReport(name=new_name, package_dir=out, choices=choices,
@@ -174,7 +190,10 @@ def _effort_joints(given, joints: dict[str, str]) -> list[str]:
     return list(dict.fromkeys(names))
 
 
-def _commands(transmissions, planned, joints, effort, choices) -> dict[str, list[str]]:
+def _commands(transmissions, planned, joints, effort, choices,
+              reported=frozenset()) -> dict[str, list[str]]:
+    """Each joint's command interfaces; `reported` names controllers whose choices already
+    say which interface they gave."""
     commands = {j: list(i) for j, i in transmissions.commands.items() if j in joints}
     unknown = [j for j in transmissions.commands if j not in joints]
     if unknown:
@@ -185,7 +204,7 @@ def _commands(transmissions, planned, joints, effort, choices) -> dict[str, list
             have = commands.setdefault(joint, [])
             if interface in have:
                 continue
-            if c.commands and joint not in effort:
+            if c.commands and joint not in effort and c.name not in reported:
                 choices.append(f"{joint} got a `{interface}` command interface for `{c.name}`" +
                                (f" besides its transmission's {', '.join(have)}" if have else
                                 ", though it has no transmission") + ".")

@@ -419,8 +419,9 @@ def _check_claims(result: Plan) -> None:
 
 
 # -- writing ------------------------------------------------------------------------------
-def yaml_text(result: Plan, package: str) -> str:
-    """config/controllers.yaml: the controller manager's section, then one per controller."""
+def yaml_text(result: Plan, package: str, added: list[str] = ()) -> str:
+    """config/controllers.yaml: the controller manager's section, then one per controller.
+    `added`: the controllers the port gave a package that commands no joint."""
     manager: dict = {"update_rate": result.update_rate}
     for c in result.controllers:
         manager[c.name] = {"type": c.type}
@@ -431,6 +432,8 @@ def yaml_text(result: Plan, package: str) -> str:
     head = [f"# {package}'s controllers for ROS 2 Jazzy (ros2_control), written by sw2sim port",
             "# from " + (", ".join(result.sources) if result.sources else
                          "no ROS 1 controller configuration") + ".",
+            *([f"# {', '.join(added)}: added, as the package commands no joint "
+               "(sw2sim port --no-controllers leaves them out)."] if added else []),
             "# The gz_ros2_control plugin in urdf/ reads this file; the launch file's spawner "
             "starts each controller.", ""]
     body = []

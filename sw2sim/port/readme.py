@@ -4,7 +4,8 @@ from __future__ import annotations
 
 
 def readme(name: str, source: str, controllers: list[str], choices: list[str],
-           files: list[str]) -> str:
+           files: list[str], usage: list[str] = ()) -> str:
+    """`usage`: Markdown lines saying how to command the controllers the port added."""
     out = [f"# {name}", "",
            f"A ROS 2 Jazzy package (ament_cmake) made by `sw2sim port` from the ROS 1 package "
            f"`{source}` that the SolidWorks-to-URDF exporter wrote. It shows the robot in "
@@ -21,6 +22,10 @@ def readme(name: str, source: str, controllers: list[str], choices: list[str],
            "```", "",
            "`ros2 control list_controllers` then lists " +
            ", ".join(f"`{c}`" for c in controllers) + ".", "",
+           *(["## Moving the joints", "",
+              "The exported package had no transmissions and no controllers, so the port "
+              "added the controllers below (`sw2sim port --no-controllers` leaves them out). "
+              "Once the launch file is running:", "", *usage] if usage else []),
            "## Files", "",
            *(f"- `{f}`" for f in files), "",
            "## Choices made for you", "",

@@ -11,7 +11,10 @@ exporter printed them:
 - ORIGINAL_3_DOF_ARM: release 1.4 (build 1.4.6968), two of whose joints are revolute with the
   exporter's default limit, lower = upper = effort = velocity = 0;
 - THREE_DOF_ARM_EARLY: an export older than the version comment, whose inertia tensors are all
-  zero and whose joints carry no safety controller.
+  zero and whose joints carry no safety controller;
+- THREE_DOF_ARM: the same arm as the repository holds it now (release 1.4, build 1.4.6968), with
+  its inertias, three continuous joints and no transmission: what a student's arm gives
+  `sw2sim port`. Its package name is THREE_DOF_ARM_EARLY's, so it is not in REAL_EXPORTS.
 
 How the exporter writes each file (from its source, SW2URDF/URDF and SW2URDF/ROS):
 - URDF and launch files: .NET XmlWriter with Indent and NewLineOnAttributes, so every
@@ -199,6 +202,42 @@ THREE_DOF_ARM_EARLY = Export(
         Joint("effector_joint", "continuous", "0 -0.18 0",
               "1.5707963267949 7.49830360911068E-33 6.12303176911189E-17",
               "dist_Link", "effector_link", "0 0 1", safety=False),
+    ),
+)
+
+THREE_DOF_ARM = Export(
+    name="3_DOF_ARM_description",
+    version=("1.4.4-6-g2742936-dirty", "1.4.6968.15956"),
+    manifest="unversioned",
+    links=(
+        Link("base_link", "0.00249115384615384 2.34558007901714E-18 0.00305587412587413",
+             "0.0510508806208341",
+             ("3.5234044049786E-05", "6.98466777397284E-37", "-2.22339710804804E-37",
+              "3.5234044049786E-05", "-5.44519126841819E-22", "6.24882413753095E-05"),
+             component="3_DOF_ARM_BASE-1"),
+        Link("prox_link", "6.94771684018737E-10 -0.0881460587278585 2.58403333886631E-10",
+             "0.132570921155528",
+             ("0.000425622211946537", "7.66166107697545E-12", "1.12207653869985E-10",
+              "6.78913907046572E-05", "2.10847233866869E-12", "0.000427554426874909"),
+             component="3_DOF_ARM_SEGMENT-1"),
+        Link("dist_Link", "6.94771724770697E-10 -0.101063661551862 -2.58403354269632E-10",
+             "0.132570921155528",
+             ("0.000425622211946537", "-7.66166112117889E-12", "-1.12207653890081E-10",
+              "6.78913907046571E-05", "2.10847240386709E-12", "0.000427554426874909"),
+             component="3_DOF_ARM_SEGMENT-2"),
+        Link("effector_link", "7.89909498403104E-17 -1.94289029309402E-16 0.0118918918918916",
+             "0.0290597320457048",
+             ("4.42470815817501E-06", "1.74806527887155E-21", "-1.05670524275547E-20",
+              "4.424708158175E-06", "4.84594662178836E-20", "5.90275807178375E-06"),
+             component="3_DOF_ARM_END_EFFECTOR-1"),
+    ),
+    joints=(
+        Joint("prox_joint", "continuous", "0.00249115384615384 0 0",
+              "-1.5707963267949 0 -1.5707963267949", "base_link", "prox_link", "0 1 0"),
+        Joint("dist_joint", "continuous", "0 -0.18920972027972 0", "-1.5707963267949 0 0",
+              "prox_link", "dist_Link", "-1 0 0"),
+        Joint("effector_joint", "continuous", "0 -0.18 0", "1.5707963267949 0 0",
+              "dist_Link", "effector_link", "0 0 -1"),
     ),
 )
 

@@ -1,4 +1,4 @@
-"""sw2sim port on every lesson package, Arm_Assembly and a raw exporter package: the ports
+"""sw2sim port on every lesson package, Arm_Assembly and two raw exporter packages: the ports
 build with colcon (ament_cmake from PyPI), their URDFs load in MuJoCo and yourdfpy with
 every mesh, and their launch files name only what Jazzy and the installed tree have.
 
@@ -25,7 +25,7 @@ from repository import ROOT
 from sw2sim.port import port
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "check"))
-from exporter_packages import FOUR_WHEELER_NESTED, write_export  # noqa: E402  (tests/tool/check)
+from exporter_packages import FOUR_WHEELER_NESTED, THREE_DOF_ARM, write_export  # noqa: E402
 
 # colcon and ament_cmake from PyPI live in the ROS 2 environment (tests/ros2_environment.py)
 VENV = ros2_environment.VENV
@@ -37,17 +37,19 @@ SOURCES = {"example_1": ("example_1", {"effort_joints": [WHEELS]}),
            "example_2": ("example_2", {}), "example_3": ("example_3", {}),
            "example_4": ("example_4", {}), "example_5": ("example_5", {}),
            "Arm_Assembly": ("arm_assembly", {}),
-           FOUR_WHEELER_NESTED.name: ("r4_wheeler_nested_description", {})}
+           FOUR_WHEELER_NESTED.name: ("r4_wheeler_nested_description", {}),
+           THREE_DOF_ARM.name: ("r3_dof_arm_description", {})}
+RAW = {e.name: e for e in (FOUR_WHEELER_NESTED, THREE_DOF_ARM)}   # (tests/tool/check)
 
 
 @pytest.fixture(scope="module")
 def workspace(tmp_path_factory):
     """A colcon workspace whose src/ holds the port of every source."""
     top = tmp_path_factory.mktemp("port_ws")
-    raw = write_export(FOUR_WHEELER_NESTED, top / "raw")
     reports = {}
     for source, (name, options) in SOURCES.items():
-        folder = raw if source == FOUR_WHEELER_NESTED.name else ROOT / "examples" / source
+        folder = write_export(RAW[source], top / "raw") if source in RAW else \
+            ROOT / "examples" / source
         reports[name] = port(folder, top / "src" / name, **options)
     return top, reports
 
@@ -99,6 +101,11 @@ def test_colcon_build_installs_every_port(workspace, installed):
                 / name).is_file()
         meshes = sorted(p.name for p in (share / "meshes").iterdir())
         assert meshes == sorted(p.name for p in (reports[name].package_dir / "meshes").iterdir())
+    # the exporter's arm, which has no controllers of its own, installs the one it was given
+    arm = yaml.safe_load((installed / "r3_dof_arm_description" / "share" / "r3_dof_arm_description"
+                          / "config" / "controllers.yaml").read_text())
+    assert arm["joint_trajectory_controller"]["ros__parameters"]["joints"] == [
+        "prox_joint", "dist_joint", "effector_joint"]
 
 
 def _calls(tree: ast.AST) -> list[ast.Call]:

@@ -206,7 +206,7 @@ def test_joints_without_a_transmission_report_state_and_effort_joints_get_a_comm
     assert "effort_controller" in report.controllers
     robot = _urdf(tmp_path / "out", "example_1")
     assert not [p for p in robot.iter("plugin") if "joint_state_publisher" in p.get("filename", "")]
-    bare = port(copy_example(1, tmp_path / "src2"), tmp_path / "out2")
+    bare = port(copy_example(1, tmp_path / "src2"), tmp_path / "out2", default_controllers=False)
     block = _urdf(tmp_path / "out2", "example_1").find("ros2_control")
     assert [j.find("command_interface") for j in block.findall("joint")] == [None] * 4
     assert any("state interfaces only" in c for c in bare.choices)
