@@ -1,13 +1,14 @@
 """The ROS 2 message packages PyPI lacks, built once with ROS 2's own generators.
 
-PyPI has no wheels of tf2_msgs (robot_state_publisher's /tf) nor of control_msgs (the
-controllers' state and the PID controller's reference). DEFINITIONS holds the messages
-the stand-in uses, field for field as upstream Jazzy has them (tf2_msgs 0.36, the jazzy
-branch of control_msgs 5.x), so that the type names and type hashes are upstream's and
-real ROS 2 nodes exchange them with the stand-in. The comments of upstream's files are
-left out: they do not enter the type hash.
+PyPI has no wheels of tf2_msgs (robot_state_publisher's /tf), of control_msgs (the
+controllers' state and the PID controller's reference) nor of controller_manager_msgs
+(the controller manager's services). DEFINITIONS holds the messages and services the
+stand-in uses, field for field as upstream Jazzy has them (tf2_msgs 0.36, the jazzy
+branches of control_msgs 5.x and ros2_control 4.x), so that the type names and type
+hashes are upstream's and real ROS 2 nodes and tools exchange them with the stand-in.
+The comments of upstream's files are left out: they do not enter the type hash.
 
-`ensure()` builds the two ament_cmake packages with rosidl (CMake from the `cmake` wheel,
+`ensure()` builds the ament_cmake packages with rosidl (CMake from the `cmake` wheel,
 the generators from the ros-jazzy wheels) and installs them into the running Python's
 virtual environment: libraries into <venv>/lib, which the wheels' bootstrapper puts on
 LD_LIBRARY_PATH, the Python modules into site-packages and the ament index into
@@ -16,7 +17,7 @@ LD_LIBRARY_PATH, the Python modules into site-packages and the ament index into
 Outside a writable virtual environment they go to a cache folder instead, which
 `environment()` adds to a process's paths.
 
-    python -m sw2sim.ros2.messages     # build them if needed (about 30 s once; then a no-op)
+    python -m sw2sim.ros2.messages     # build them if needed (about a minute once; then a no-op)
 """
 
 from __future__ import annotations
@@ -84,7 +85,74 @@ DEFINITIONS: dict[str, tuple[tuple[str, ...], dict[str, str]]] = {
     }),
 }
 
-VERSIONS = {"tf2_msgs": "0.36.4", "control_msgs": "5.8.0"}   # upstream's, for package.xml
+# controller_manager_msgs (ros2_control 4.46.0, the jazzy branch): the controller manager's
+# services (sw2sim.ros2.manager), which `ros2 control ...` and the spawner call.
+_HARDWARE_INTERFACE = "string name\nstring data_type\nbool is_available\nbool is_claimed\n"
+DEFINITIONS["controller_manager_msgs"] = (("builtin_interfaces", "lifecycle_msgs", "std_msgs"), {
+    "msg/ChainConnection.msg": "string name\nstring[] reference_interfaces\n",
+    "msg/ControllerState.msg": (
+        "string name\n"
+        "string state\n"
+        "string type\n"
+        "bool is_async\n"
+        "uint16 update_rate\n"
+        "string[] claimed_interfaces\n"
+        "string[] required_command_interfaces\n"
+        "string[] required_state_interfaces\n"
+        "bool is_chainable\n"
+        "bool is_chained\n"
+        "string[] exported_state_interfaces\n"
+        "string[] reference_interfaces\n"
+        "ChainConnection[] chain_connections\n"
+    ),
+    "msg/HardwareInterface.msg": _HARDWARE_INTERFACE,
+    "msg/HardwareComponentState.msg": (
+        "string name\n"
+        "string type\n"
+        "bool is_async\n"
+        "uint16 rw_rate\n"
+        "string class_type\n"
+        "string plugin_name\n"
+        "lifecycle_msgs/State state\n"
+        "HardwareInterface[] command_interfaces\n"
+        "HardwareInterface[] state_interfaces\n"
+    ),
+    "msg/NamedLifecycleState.msg": "string name\nlifecycle_msgs/State state\n",
+    "msg/ControllerManagerActivity.msg": (
+        "std_msgs/Header header\n"
+        "NamedLifecycleState[] controllers\n"
+        "NamedLifecycleState[] hardware_components\n"
+    ),
+    "srv/CleanupController.srv": "string name\n---\nbool ok\n",
+    "srv/ConfigureController.srv": "string name\n---\nbool ok\n",
+    "srv/ListControllerTypes.srv": "---\nstring[] types\nstring[] base_classes\n",
+    "srv/ListControllers.srv": "---\ncontroller_manager_msgs/ControllerState[] controller\n",
+    "srv/ListHardwareComponents.srv": "---\nHardwareComponentState[] component\n",
+    "srv/ListHardwareInterfaces.srv": (
+        "---\nHardwareInterface[] command_interfaces\nHardwareInterface[] state_interfaces\n"),
+    "srv/LoadController.srv": "string name\n---\nbool ok\n",
+    "srv/ReloadControllerLibraries.srv": "bool force_kill\n---\nbool ok\n",
+    "srv/SetHardwareComponentState.srv": (
+        "string name\nlifecycle_msgs/State target_state\n---\nbool ok\nlifecycle_msgs/State state\n"),
+    "srv/SwitchController.srv": (
+        "string[] activate_controllers\n"
+        "string[] deactivate_controllers\n"
+        "int32 strictness\n"
+        "int32 BEST_EFFORT=1\n"
+        "int32 STRICT=2\n"
+        "int32 AUTO=3\n"
+        "int32 FORCE_AUTO=4\n"
+        "bool activate_asap\n"
+        "builtin_interfaces/Duration timeout\n"
+        "---\n"
+        "bool ok\n"
+        "string message\n"
+    ),
+    "srv/UnloadController.srv": "string name\n---\nbool ok\n",
+})
+
+VERSIONS = {"tf2_msgs": "0.36.4", "control_msgs": "5.8.0",   # upstream's, for package.xml
+            "controller_manager_msgs": "4.46.0"}
 PYPI_HINT = 'pip install "sw2sim[ros2]"'
 
 
@@ -151,8 +219,8 @@ def ensure(say=None) -> Path:
         if _marker(where).is_file():
             return where
         if say:
-            say(f"sw2sim ros2: building the tf2_msgs and control_msgs message packages into "
-                f"{where} (once, about 30 s)")
+            say(f"sw2sim ros2: building the {', '.join(DEFINITIONS)} message packages into "
+                f"{where} (once, about a minute)")
         began = time.monotonic()
         with tempfile.TemporaryDirectory(prefix="sw2sim-ros2-messages-") as scratch:
             _build_all(Path(scratch), where)
@@ -234,7 +302,7 @@ def _build_all(scratch: Path, where: Path) -> None:
             f'-DPYTHON_INSTALL_DIR="{site_packages(where).relative_to(where)}"',
             f'"{cmake}" --build "{build}" -j {jobs}',
             f'"{cmake}" --install "{build}"'])
-        # The two packages are independent: built side by side.
+        # The packages are independent: built side by side.
         running.append((name, log, subprocess.Popen(command, shell=True, env=env, stdout=log,
                                                     stderr=subprocess.STDOUT)))
     failed = []
@@ -261,7 +329,7 @@ def main() -> int:
     except MessagesError as exc:
         print(f"sw2sim ros2: {exc}", file=sys.stderr)
         return 1
-    print(f"sw2sim ros2: tf2_msgs and control_msgs are in {where} "
+    print(f"sw2sim ros2: {', '.join(DEFINITIONS)} are in {where} "
           f"({time.monotonic() - began:.1f} s)")
     return 0
 
