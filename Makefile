@@ -113,9 +113,9 @@ $(STAMPS)/ros: Makefile $(STAMPS)/venv
 # in an environment of its own, .venv-ros2: ROS 2's message packages (std_msgs,
 # sensor_msgs, ...) have the same module names as ROS 1's, which .venv reaches from
 # Debian, and one Python cannot import both. Then the three message packages PyPI lacks
-# (tf2_msgs, control_msgs, controller_manager_msgs) are built into it. The wheels exist for Linux only; where pip
-# finds none for this Python or CPU, this says so and goes on, and the ROS 2 tests are
-# skipped with that reason.
+# (tf2_msgs, control_msgs, controller_manager_msgs) are built into it. The wheels exist
+# for Linux only; where pip finds none for this Python or CPU, this says so and goes on,
+# and the ROS 2 tests are skipped with that reason.
 VENV2 := .venv-ros2
 PY2   := $(VENV2)/bin/python
 
