@@ -1,4 +1,6 @@
-"""The source behind what the pages say the exporter, gazebo_ros_control and ros_control do.
+"""The source behind what the pages say the exporter, gazebo_ros_control and ros_control do,
+and on the ROS 2 side gz_ros2_control, ros2_control, the ros2_controllers, control_toolbox,
+robot_state_publisher, ros_gz and rclpy.
 
 A page that states how one of these tools behaves ("the exporter writes ...") backs the
 sentence with a link to the lines of the tool's source that do it:
@@ -10,7 +12,8 @@ new release of a tool means editing one list, not hunting through pages; the inc
 
 `statements` finds the sentences a reader takes for a statement about a tool's behaviour,
 by a narrow rule so that it never has to be argued with: the tool is the sentence's
-subject, named as the pages name it, and a verb of doing follows it. tests/course/
+subject, named as the pages name it, and a verb of doing follows it (on a ROS 2 page "the
+controller" is a subject too: there it is one of ros2_controllers'). tests/course/
 test_sources.py requires each such sentence to carry a link; `python -m course.sources`
 lists those that do not.
 """
@@ -41,7 +44,8 @@ REPOSITORIES = {"solidworks_urdf_exporter": "ros/solidworks_urdf_exporter",
                 "control_toolbox": "ros-controls/control_toolbox",
                 "robot_state_publisher": "ros/robot_state_publisher",
                 "ros_gz": "gazebosim/ros_gz",
-                "rclpy": "ros2/rclpy"}
+                "rclpy": "ros2/rclpy",
+                "rmw": "ros2/rmw"}
 # A link to lines of a file at a tag or branch: blob/<ref>/<file>#L<a>[-L<b>].
 URL = re.compile(r"^https://github\.com/(?P<repo>[\w.-]+/[\w.-]+)/blob/(?P<ref>[\w.-]+)/"
                  r"(?P<file>[^#\s]+)#L(?P<first>\d+)(?:-L(?P<last>\d+))?$")
@@ -121,7 +125,20 @@ _SUBJECT = (r"(?:(?<!of )\b[Tt]he exporter(?!'s)"
             r"|\*?Automatically Generate\*?"
             r"|(?:[Tt]he )?`?\b(?:gazebo_ros_control|ros_control|joint_limits_interface)\b`?"
             r"(?![\'/])(?: plugin)?"
-            r"|\b[Tt]he controller manager)")
+            r"|\b[Tt]he controller manager"
+            # ROS 2: gz_ros2_control, ros2_control and the ros2_controllers, control_toolbox,
+            # robot_state_publisher, ros_gz and rclpy, by name or as the ROS 2 pages call them
+            r"|(?:[Tt]he )?`?\b(?:gz_ros2_control|ros2_control|control_toolbox|robot_state_publisher"
+            r"|ros_gz_bridge|ros_gz_sim|joint_state_broadcaster|joint_trajectory_controller"
+            r"|pid_controller|forward_command_controller|GazeboSimROS2ControlPlugin|GazeboSimSystem"
+            r"|JointGroupEffortController|JointTrajectoryController|PidController"
+            r"|JointStateBroadcaster|spawner|rclpy(?:\.\w+)*)\b`?(?![\'/])"
+            r"(?: (?:plugin|controller|broadcaster|program|node))?"
+            r"|\b[Tt]he (?:joint )?trajectory controller(?!s)|\b[Tt]he (?:joint state )?broadcaster(?!s)"
+            r"|\b[Tt]he PID controller|\b[Tt]he spawner|\bJazzy's (?:PID|`\w+`)"
+            r"|\b[Gg]azebo Sim's (?:ROS 2 )?plugin|\b[Ii]ts hardware plugin|\b[Ii]ts `create` program)")
+# On a ROS 2 page (one whose file name says ros2), "the controller" is one of ros2_controllers'.
+_ROS2_SUBJECT = _SUBJECT[:-1] + r"|\b[Tt]he controller(?! manager)(?!')" + ")"
 _ADVERB = r"(?:,?\s+(?:itself|also|then|only|still|always|never|now|first|just|therefore|"\
           r"instead|simply|again),?)*"
 # Verbs of doing, as the third person present and as they follow a negation or a modal.
@@ -132,7 +149,9 @@ _DOING = ("write", "set", "read", "name", "copy", "call", "fill", "rewrite", "le
           "convert", "compute", "misspell", "describe", "save", "store", "refuse", "publish",
           "send", "place", "multiply", "cap", "enforce", "ignore", "overwrite", "declare",
           "measure", "round", "list", "treat", "spawn", "stop", "reset", "pass", "see",
-          "check", "touch")
+          "check", "touch", "update", "clamp", "move", "carry", "replace", "report", "wait",
+          "subscribe", "interpolate", "accept", "print", "warn", "offer", "drive", "fire", "end",
+          "follow")
 
 
 def _third_person(verb: str) -> str:
@@ -144,7 +163,14 @@ def _third_person(verb: str) -> str:
 _THIRD = "(?:" + "|".join(map(_third_person, _DOING)) + "|misspelt)"
 _BASE = "(?:" + "|".join(_DOING) + ")"
 _NEGATION = r"\s+(?:does not|doesn't|do not|cannot|can't|will|would|can|did not)"
-STATEMENT = re.compile(rf"{_SUBJECT}{_ADVERB}(?:\s+{_THIRD}\b|{_NEGATION}{_ADVERB}\s+{_BASE}\b)")
+_DOES = rf"{_ADVERB}(?:\s+{_THIRD}\b|{_NEGATION}{_ADVERB}\s+{_BASE}\b)"
+STATEMENT = re.compile(_SUBJECT + _DOES)
+ROS2_STATEMENT = re.compile(_ROS2_SUBJECT + _DOES)
+
+
+def is_ros2_page(path: Path) -> bool:
+    """A page about ROS 2 (each practice's last page, the ROS 2 reference pages)."""
+    return "ros2" in path.name
 
 # The end of a sentence: . ! ? (and closing marks), then the source includes that back it.
 # An ellipsis ("Export URDF Only...", "Lxx ... Lzz") does not end a sentence.
@@ -200,11 +226,12 @@ def prose(path: Path) -> list[tuple[int, str]]:
 def statements(path: Path) -> list[Statement]:
     """The sentences of a page whose subject is one of the tools, doing something."""
     page = path.relative_to(PAGES).as_posix()
+    rule = ROS2_STATEMENT if is_ros2_page(path) else STATEMENT
     found = []
     for line, text in prose(path):
         for sentence in sentences(text):
             bare = INCLUDE.sub("", sentence)
-            if STATEMENT.search(bare) and not any(
+            if rule.search(bare) and not any(
                     page == where and words in bare for where, words in NOT_THE_TOOL):
                 found.append(Statement(page, line, sentence, tuple(included_ids(sentence))))
     return found

@@ -235,14 +235,23 @@ def test_ros2_controllers_keep_practice_3s_gains_and_rates(ros2):
     arm = ROOT / "examples" / "example_3" / "scripts" / "arm_controller.py"
     timestep = float(re.search(r"^TIMESTEP = ([\d.]+)", arm.read_text(), re.M).group(1))
     assert manager["update_rate"] == round(1 / timestep)
-    assert "every controller 1000 times a second, once per 1 ms step" in squash(text)
     rate = controllers["joint_state_broadcaster"]["ros__parameters"]["update_rate"]
     assert rate == ros1["joint_state_controller"]["publish_rate"]
+    # Each controller runs at its own update_rate: the trajectory controllers, which give
+    # none, at the manager's; the broadcaster at its own, which the manager's is a multiple of.
+    said = squash(text)
+    assert (f"With `update_rate: {manager['update_rate']}`, `gz_ros2_control` updates the "
+            f"controller manager every {1000 * timestep:g} ms of simulated time") in said
+    assert f"so the two trajectory controllers run {manager['update_rate']} times a second" in said
+    assert f"`update_rate: {rate}` makes it run {rate} times a second" in said
+    assert manager["update_rate"] % rate == 0
+    assert "every controller 1000 times a second" not in said
     for name, c in ros1.items():
         if c["type"] != "effort_controllers/JointPositionController":
             continue
         assert manager[name]["type"] == "joint_trajectory_controller/JointTrajectoryController"
         params = controllers[name]["ros__parameters"]
+        assert "update_rate" not in params   # so it runs at the manager's rate, as the page says
         joint, pid = c["joint"], c["pid"]
         assert params["joints"] == [joint] and params["command_interfaces"] == ["effort"]
         gains = params["gains"][joint]
@@ -261,6 +270,10 @@ def test_ros2_control_joints_and_limits_are_the_urdfs(ros2):
         params = {p.get("name"): float(p.text) for p in joint.findall("command_interface/param")}
         assert params == {"min": -effort, "max": effort}
         assert f"the URDF's effort limit, {effort:g} N·m" in squash(text)
+    # min and max are limits nothing enforces unless the controller manager is told to.
+    assert "`enforce_command_limits` parameter is true, and in Jazzy it is false by default" \
+        in squash(text)
+    assert "give the command's range" not in squash(text)
 
 
 # ---- Glossary -----------------------------------------------------------------------------

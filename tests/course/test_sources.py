@@ -1,12 +1,19 @@
 """Every sentence of the pages that says what the exporter, gazebo_ros_control or ros_control
-does links to the lines of the tool's source that do it (course/sources.py, _data/sources.yml).
+does, or on the ROS 2 side gz_ros2_control, ros2_control, a ros2_controllers controller,
+control_toolbox, robot_state_publisher, ros_gz or rclpy, links to the lines of the tool's source
+that do it (course/sources.py, _data/sources.yml).
 
 "A statement about a tool's behaviour" is the narrow rule of course.sources.STATEMENT: a
 sentence of a page's prose (not code, not HTML, not a heading) whose subject is the exporter
 ("the exporter", *Export URDF and Meshes...*, *Export URDF Only...*, *Automatically
 Generate*), gazebo_ros_control, ros_control, joint_limits_interface or the controller manager,
-followed by a verb of doing (writes, reads, takes, sets, skips, ...) or a negation of one.
-Such a sentence carries `{% include source.html id="..." %}` inside it or right after it.
+or a ROS 2 tool by name (gz_ros2_control, `joint_state_broadcaster`, `rclpy.spin`, the
+trajectory controller, ...; on a ROS 2 page also "the controller"), followed by a verb of doing
+(writes, reads, takes, sets, skips, ...) or a negation of one. Such a sentence carries
+`{% include source.html id="..." %}` inside it or right after it.
+
+The ROS 2 versions are those /reference/ros2-controllers/ states: every link to those tools, on
+a page or in the data file, is at that release's tag.
 
 The links are checked offline: each is a github blob URL at a release tag (or a maintained
 branch) with its lines, and agrees with the entry's tool, tag, file and lines. Where a copy of
@@ -59,6 +66,13 @@ def page_ids() -> dict[str, list[str]]:
     "ROS's `gazebo_ros_control` applies them; MuJoCo does not.",
     "The controller manager runs every controller 1000 times a second.",
     "a joint held by a mate has no freedom left, and the exporter would make it fixed.",
+    "With `update_rate: 1000`, `gz_ros2_control` updates the controller manager every 1 ms.",
+    "The `joint_state_broadcaster` publishes every joint's position on `/joint_states`.",
+    "`rclpy.spin_once` waits for the next callback that is due.",
+    "Jazzy's `ackermann_steering_controller` refuses to start without two traction joints.",
+    "Gazebo Sim's plugin reads the names `position`, `velocity` and `effort`.",
+    "When only positions are given, the trajectory controller moves the reference in a line.",
+    "`min` and `max` are the command's range as ros2_control reads it.",
 ])
 def test_the_rule_takes_these_for_statements(sentence):
     assert sources.STATEMENT.search(sentence), sentence
@@ -71,9 +85,22 @@ def test_the_rule_takes_these_for_statements(sentence):
     "Then add the reference geometry the exporter will need.",    # not a verb of doing
     "The pages before this one use ROS 1, as the exporter does.",
     "[The exporter, option by option](/reference/exporter/) explains every field.",
+    "The controller keeps the efforts it got last.",      # "the controller" only on ROS 2 pages
+    "Gazebo Sim's ROS 2 plugin is gz_ros2_control.",      # not a verb of doing
+    "The trajectory controllers keep their ROS 1 names.",  # the plural is no tool's name
+    "`ros2_control`'s parameters sit under the manager.",  # the subject is "parameters"
 ])
 def test_the_rule_leaves_these_out(sentence):
     assert not sources.STATEMENT.search(sentence), sentence
+
+
+def test_on_a_ros2_page_the_controller_is_a_ros2_controller():
+    sentence = "The controller keeps applying the efforts it got last until it is told otherwise."
+    assert sources.ROS2_STATEMENT.search(sentence) and not sources.STATEMENT.search(sentence)
+    assert not sources.ROS2_STATEMENT.search("The controller manager's section names the types.")
+    assert not sources.ROS2_STATEMENT.search("The controller's topic is `~/commands`.")
+    assert sources.is_ros2_page(sources.PAGES / "practice-1/06-ros2.md")
+    assert not sources.is_ros2_page(sources.PAGES / "practice-3/04-controllers.md")
 
 
 def test_an_include_belongs_to_the_sentence_it_follows():
@@ -107,7 +134,8 @@ def test_every_statement_about_a_tools_behaviour_cites_its_source():
     # The rule finds the statements it is meant for: at least these pages make some.
     pages = {s.page for s in statements}
     assert {"reference/02-exporter.md", "practice-1/02-exporting.md",
-            "practice-3/03-transmissions.md"} <= pages
+            "practice-3/03-transmissions.md", "reference/05-ros1-to-ros2.md",
+            "reference/09-ros2-controllers.md", "practice-1/06-ros2.md"} <= pages
     bare = [str(s) for s in statements if not s.cited]
     assert not bare, ("Sentences that say what a tool does without a source link: end each with "
                       '{% include source.html id="..." %} (an entry of _data/sources.yml):\n'
@@ -142,6 +170,53 @@ def test_every_url_is_a_blob_at_a_tag_with_its_lines(entries):
         assert 0 < first <= last, (id, source.lines)
         assert (int(m["first"]), int(m["last"] or m["first"])) == (first, last), id
         assert re.fullmatch(r"[\w.<>\[\]-]+", source.anchor), (id, source.anchor)
+
+
+# ---- the ROS 2 versions ------------------------------------------------------------------
+
+VERSIONS_PAGE = sources.PAGES / "reference" / "09-ros2-controllers.md"
+# A link to a file or folder of a repository on GitHub, at a ref.
+GITHUB_LINK = re.compile(r"https://github\.com/(?P<repo>[\w.-]+/[\w.-]+)/(?:blob|tree)/(?P<ref>[\w.-]+)")
+ROS2_TOOLS = ("gz_ros2_control", "ros2_control", "ros2_controllers", "control_toolbox",
+              "robot_state_publisher", "ros_gz", "rclpy", "rmw")
+
+
+def stated_versions() -> dict[str, str]:
+    """tool -> the release the ROS 2 controllers page says its lines are read at."""
+    text = " ".join(VERSIONS_PAGE.read_text(encoding="utf-8").split())
+    listed = re.search(r"at these release tags: (.*?)\.(?:\s|$)", text)
+    assert listed, f"{VERSIONS_PAGE}: no sentence 'at these release tags: TOOL X.Y.Z, ...'"
+    versions = dict(re.findall(r"(\w+) (\d+\.\d+\.\d+)", listed.group(1)))
+    assert {"gz_ros2_control", "ros2_control", "ros2_controllers", "control_toolbox"} <= set(versions)
+    return versions
+
+
+def test_every_link_to_a_ros2_tool_is_at_the_version_the_pages_state(entries):
+    """The versions /reference/ros2-controllers/ states are the tags of every link to those
+    tools: on any page, and in the data file the source includes show."""
+    versions = stated_versions()
+    repos = {sources.REPOSITORIES[tool]: (tool, tag) for tool, tag in versions.items()}
+    wrong = []
+    for path in PAGES:
+        for m in GITHUB_LINK.finditer(path.read_text(encoding="utf-8")):
+            if m["repo"] in repos and m["ref"] != repos[m["repo"]][1]:
+                tool, tag = repos[m["repo"]]
+                wrong.append(f"{path.relative_to(ROOT)}: {m.group(0)} is at {m['ref']}, but "
+                             f"{VERSIONS_PAGE.relative_to(ROOT)} says {tool} {tag}")
+    for id, source in entries.items():
+        if source.tool in versions and source.tag != versions[source.tool]:
+            wrong.append(f"{sources.DATA.relative_to(ROOT)}: {id} is at {source.tool} "
+                         f"{source.tag}, but the page says {versions[source.tool]}")
+    assert not wrong, "\n".join(wrong)
+
+
+def test_each_ros2_tool_is_read_at_one_release(entries):
+    tags: dict[str, set[str]] = {}
+    for source in entries.values():
+        if source.tool in ROS2_TOOLS:
+            tags.setdefault(source.tool, set()).add(source.tag)
+    assert {tool: tag for tool, tag in tags.items() if len(tag) > 1} == {}
+    assert set(ROS2_TOOLS) <= set(sources.REPOSITORIES)
 
 
 def test_a_bad_entry_is_named_with_its_fix(tmp_path):
