@@ -1,11 +1,12 @@
 """The ROS 2 message packages PyPI lacks, built once with ROS 2's own generators.
 
 PyPI has no wheels of tf2_msgs (robot_state_publisher's /tf), of control_msgs (the
-controllers' state and the PID controller's reference) nor of controller_manager_msgs
-(the controller manager's services). DEFINITIONS holds the messages and services the
-stand-in uses, field for field as upstream Jazzy has them (tf2_msgs 0.36, the jazzy
-branches of control_msgs 5.x and ros2_control 4.x), so that the type names and type
-hashes are upstream's and real ROS 2 nodes and tools exchange them with the stand-in.
+controllers' state, the PID controller's reference and joint_trajectory_controller's
+FollowJointTrajectory action) nor of controller_manager_msgs (the controller manager's
+services). DEFINITIONS holds the messages, services and actions the stand-in uses,
+field for field as upstream Jazzy has them (tf2_msgs 0.36, the jazzy branches of
+control_msgs 5.x and ros2_control 4.x), so that the type names and type hashes are
+upstream's and real ROS 2 nodes and tools exchange them with the stand-in.
 The comments of upstream's files are left out: they do not enter the type hash.
 
 `ensure()` builds the ament_cmake packages with rosidl (CMake from the `cmake` wheel,
@@ -38,7 +39,8 @@ DEFINITIONS: dict[str, tuple[tuple[str, ...], dict[str, str]]] = {
     "tf2_msgs": (("builtin_interfaces", "geometry_msgs"), {
         "msg/TFMessage.msg": "geometry_msgs/TransformStamped[] transforms\n",
     }),
-    "control_msgs": (("builtin_interfaces", "geometry_msgs", "std_msgs", "trajectory_msgs"), {
+    "control_msgs": (("action_msgs", "builtin_interfaces", "geometry_msgs", "std_msgs",
+                      "trajectory_msgs"), {
         "msg/JointTrajectoryControllerState.msg": (
             "# joint_trajectory_controller's state, once per update\n"
             "std_msgs/Header header\n"
@@ -81,6 +83,55 @@ DEFINITIONS: dict[str, tuple[tuple[str, ...], dict[str, str]]] = {
             "# pid_controller's ~/controller_state\n"
             "std_msgs/Header header\n"
             "SingleDOFState[] dof_states\n"
+        ),
+        "msg/JointTolerance.msg": (
+            "# 0: the controller's default; -1: none\n"
+            "string name\n"
+            "float64 position\n"
+            "float64 velocity\n"
+            "float64 acceleration\n"
+        ),
+        "msg/JointComponentTolerance.msg": (
+            "uint16 X_AXIS=1\n"
+            "uint16 Y_AXIS=2\n"
+            "uint16 Z_AXIS=3\n"
+            "uint16 TRANSLATION=4\n"
+            "uint16 ROTATION=5\n"
+            "\n"
+            "string joint_name\n"
+            "uint16 component\n"
+            "float64 position\n"
+            "float64 velocity\n"
+            "float64 acceleration\n"
+        ),
+        "action/FollowJointTrajectory.action": (
+            "# joint_trajectory_controller's ~/follow_joint_trajectory\n"
+            "trajectory_msgs/JointTrajectory trajectory\n"
+            "trajectory_msgs/MultiDOFJointTrajectory multi_dof_trajectory\n"
+            "JointTolerance[] path_tolerance\n"
+            "JointComponentTolerance[] component_path_tolerance\n"
+            "JointTolerance[] goal_tolerance\n"
+            "JointComponentTolerance[] component_goal_tolerance\n"
+            "builtin_interfaces/Duration goal_time_tolerance\n"
+            "---\n"
+            "int32 error_code\n"
+            "int32 SUCCESSFUL = 0\n"
+            "int32 INVALID_GOAL = -1\n"
+            "int32 INVALID_JOINTS = -2\n"
+            "int32 OLD_HEADER_TIMESTAMP = -3\n"
+            "int32 PATH_TOLERANCE_VIOLATED = -4\n"
+            "int32 GOAL_TOLERANCE_VIOLATED = -5\n"
+            "string error_string\n"
+            "---\n"
+            "std_msgs/Header header\n"
+            "string[] joint_names\n"
+            "trajectory_msgs/JointTrajectoryPoint desired\n"
+            "trajectory_msgs/JointTrajectoryPoint actual\n"
+            "trajectory_msgs/JointTrajectoryPoint error\n"
+            "string[] multi_dof_joint_names\n"
+            "trajectory_msgs/MultiDOFJointTrajectoryPoint multi_dof_desired\n"
+            "trajectory_msgs/MultiDOFJointTrajectoryPoint multi_dof_actual\n"
+            "trajectory_msgs/MultiDOFJointTrajectoryPoint multi_dof_error\n"
         ),
     }),
 }

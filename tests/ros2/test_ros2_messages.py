@@ -1,6 +1,7 @@
 """tf2_msgs, control_msgs and controller_manager_msgs as built here have upstream Jazzy's
-type hashes (the values below are those of upstream's own .msg and .srv files, geometry2
-jazzy, control_msgs 5.8.0 and ros2_control 4.46.0, built with the same generators): real
+type hashes (the values below are those of upstream's own .msg, .srv and .action files,
+geometry2 jazzy, control_msgs 5.8.0 and ros2_control 4.46.0, built with the same
+generators; an action's hash covers its goal, result and feedback): real
 ROS 2 nodes and tools exchange them with the stand-in."""
 
 from __future__ import annotations
@@ -25,6 +26,12 @@ UPSTREAM = {
         "RIHS01_fe8365f86265bddfefbd26698975a818bf024a1c267c8ce577cd366ef06d7163",
     "control_msgs/msg/SingleDOFStateStamped":
         "RIHS01_33859c01b46943f1458f83f2627249d34332b38e545c723ddbdabea2b6675af1",
+    "control_msgs/msg/JointTolerance":
+        "RIHS01_c254f9cece0f3b733017b6990fd46d1326e25242d6b8844398c97d9a88e7d648",
+    "control_msgs/msg/JointComponentTolerance":
+        "RIHS01_739ea7566931944d33830fa10f1bf5e7a7fbdc3172bce7a7eaac642bd6e3ffa4",
+    "control_msgs/action/FollowJointTrajectory":
+        "RIHS01_738ebcb7a2d7cfa42f9f1001cc99ce3a4383d1cfe508015d9be8485e4b1c66f6",
     "controller_manager_msgs/msg/ChainConnection":
         "RIHS01_2daecd1da4b171f48b291c79747657a651eb1ab8821b68e38b1c88c736bba91c",
     "controller_manager_msgs/msg/ControllerManagerActivity":
