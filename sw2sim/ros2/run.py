@@ -1,12 +1,16 @@
 """`sw2sim ros2 PACKAGE`: a ROS 2 package's robot under real rclpy, with MuJoCo in the
 place of Gazebo Sim, gz_ros2_control and robot_state_publisher (sw2sim.ros2.node).
 
-One process, the node itself: nothing else is started. A ROS 1 export (a catkin
-package.xml, no config/controllers.yaml) is first ported into a temporary folder with
-sw2sim.port, removed at the end. ROS 2 stays on this machine (sw2sim.ros2.discovery), in
-the user's ROS_DOMAIN_ID or 0, printed for a second terminal to match. The process stops
+One process, the node itself, and the watcher of its shared-memory files (below). A ROS 1
+export (a catkin package.xml, no config/controllers.yaml) is first ported into a temporary
+folder with sw2sim.port, removed at the end. ROS 2 stays on this machine (sw2sim.ros2.discovery), in
+the user's ROS_DOMAIN_ID or 0, printed for a second terminal to match; should Fast DDS open
+a socket beyond 127.0.0.1 all the same, the process says so and stops. The process stops
 on Ctrl-C (also where the shell started it with Ctrl-C ignored, in the background of a
 script), SIGTERM, SIGHUP, after --duration seconds, and when its parent process dies.
+Fast DDS's shared-memory files go with it however it ends: Fast DDS removes them on the
+way out, and a watcher in a session of its own (sw2sim.ros2.shm) removes those a SIGKILL
+leaves; each run also removes the ones killed runs left.
 """
 
 from __future__ import annotations
@@ -108,6 +112,10 @@ def run(path: str, duration: float | None = None, realtime: float = 1.0, view: b
         os.environ.update(discovery.environment(domain))
         for variable in ("ROS_LOCALHOST_ONLY", "ROS_STATIC_PEERS"):
             os.environ.pop(variable, None)
+        from . import shm
+        if shm.supported():
+            shm.sweep()    # what killed runs left in /dev/shm
+            shm.watch()    # what this one leaves, however it ends
         return _serve(package, setup, domain, duration, realtime, view, stop, parent, say)
     finally:
         for sig, handler in previous.items():
@@ -122,12 +130,19 @@ def _serve(package, setup, domain, duration, realtime, view, stop, parent, say) 
     from rclpy.signals import SignalHandlerOptions
 
     from ..archive import shown
+    from . import discovery
     from .node import Simulation
     context = rclpy.Context()
     rclpy.init(context=context, signal_handler_options=SignalHandlerOptions.NO)
     node = executor = spinner = window = None
     try:
         node = rclpy.create_node("sw2sim", context=context)
+        outside = discovery.beyond_loopback()
+        if outside:
+            say(f"sw2sim ros2: Fast DDS opened sockets beyond 127.0.0.1 ({', '.join(outside)}): "
+                f"it did not apply the profile {discovery.profile_file()} (its messages above "
+                "say why); stopped, to keep ROS 2 on this machine")
+            return 2
         try:
             sim = Simulation(package, setup, node, say=say)
         except Exception as exc:  # noqa: BLE001  (the model cannot be loaded)
@@ -135,7 +150,7 @@ def _serve(package, setup, domain, duration, realtime, view, stop, parent, say) 
                 "lists every problem, each with its fix)")
             return 2
         say(f"sw2sim ros2: {shown(package.root) or package.root} on ROS_DOMAIN_ID={domain} "
-            "(this machine only: ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST), MuJoCo standing in "
+            "(this machine only: every socket on 127.0.0.1), MuJoCo standing in "
             "for Gazebo Sim, gz_ros2_control and robot_state_publisher")
         say(f"sw2sim ros2: in the terminals of your nodes: export ROS_DOMAIN_ID={domain} "
             "ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST")
