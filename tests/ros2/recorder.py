@@ -8,7 +8,8 @@ wall time).
                              [--commands CONTROLLER V1,V2,...] [--reference CONTROLLER JOINT VALUE]
                              [--state CONTROLLER {jtc,pid}] [--tf LINK]
 
-Commands are sent once the first joint state has arrived.
+Commands are sent once the first joint state has arrived. A trajectory for several joints
+names them and their positions with commas: --trajectory arm a,b 0.5,-0.2 2.
 """
 
 import argparse
@@ -92,9 +93,10 @@ def main() -> int:
     for controller, joint, position, duration in args.trajectory:
         publisher = node.create_publisher(JointTrajectory, f"/{controller}/joint_trajectory", 10)
         whole, part = divmod(float(duration), 1.0)
-        point = JointTrajectoryPoint(positions=[float(position)])
+        point = JointTrajectoryPoint(positions=[float(p) for p in position.split(",")])
         point.time_from_start.sec, point.time_from_start.nanosec = int(whole), int(part * 1e9)
-        senders.append((publisher, JointTrajectory(joint_names=[joint], points=[point])))
+        senders.append((publisher, JointTrajectory(joint_names=joint.split(","),
+                                                   points=[point])))
     for controller, values in args.commands:
         publisher = node.create_publisher(Float64MultiArray, f"/{controller}/commands", 10)
         senders.append((publisher, Float64MultiArray(data=[float(v) for v in values.split(",")])))
