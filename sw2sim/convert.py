@@ -24,6 +24,7 @@ import numpy as np
 from lxml import etree
 
 from .actuators import Actuator, add_actuators
+from .limits import DAMPING_RATIO, HOLD
 from .loader import load_package, lowest_collision_point
 from .mesh_formats import converted_from
 from .package import LoadError, Package, as_package
@@ -227,6 +228,13 @@ def readme(result: Conversion, package: Package) -> str:
                                if result.meshes else "none; the shapes are URDF primitives. ") +
            "Each link keeps its visual shape (geom group 1, no contacts) and its collision "
            "shape (group 0); MuJoCo collides a mesh as its convex hull.",
+           *(["- **Joint limits** are hard stops, as Gazebo's physics holds them: each limited "
+              "joint's `solreflimit` (2 time steps, damping ratio "
+              f"{DAMPING_RATIO:g}) and `solimplimit` (its impedance from its effort "
+              f"limit and inertia) keep it within {HOLD:g} rad (or m) of its limit "
+              "under the URDF's full effort; one reached at speed first passes it by up to "
+              "one time step's travel (MuJoCo has no velocity limit to stop that)."]
+             if any(kind in ("revolute", "prismatic") for _, kind in joints) else []),
            f"- **Floor** at z = {result.floor_z:g} m" + (
                ", under the model's lowest point." if result.floor_z < 0 else "."),
            ""]

@@ -3,9 +3,10 @@
 MuJoCo reads URDF, but an exported package does not load as it is: mesh paths use
 `package://`, visual meshes are thrown away by default, meshes made for RViz may be
 COLLADA, which MuJoCo cannot decode, a base welded to the world collides with its own
-wheels, and there is nothing to stand on or look through. `load_package` fixes exactly
-those things and nothing else, and says what is wrong (with the file and line) when the
-package itself is broken.
+wheels, a joint's limit gives way under the URDF's effort (MuJoCo's limits are soft,
+Gazebo's hard), and there is nothing to stand on or look through. `load_package` fixes
+exactly those things and nothing else, and says what is wrong (with the file and line)
+when the package itself is broken.
 """
 
 from __future__ import annotations
@@ -21,6 +22,7 @@ from lxml import etree
 
 import mujoco
 
+from . import limits
 from .mesh_formats import (LFS_FIX, Unconvertible, converted_name, lfs_pointer, stand_in,
                            stl_bytes)
 from .package import LoadError, Package, as_package, find_package, resolve_mesh
@@ -50,6 +52,8 @@ def load_package(source: str | os.PathLike | Package, *, fixed_base: bool = True
     - visual meshes are kept (collision geoms: group 0; visual geoms: group 1, no contacts);
     - a base fixed to the world does not collide with the links it carries directly
       (their meshes overlap at the axles and would lock the joints);
+    - each limited joint's limit is a hard stop, as Gazebo's physics holds it: per-joint
+      solreflimit, solimplimit and margin (`sw2sim.limits`);
     - a floor (at z = 0, or under the model's lowest point if that is lower), a light
       and a camera named "overview" are added;
     - `fixed_base=False` gives the root link a free joint instead, lifted so it rests
@@ -94,7 +98,12 @@ def load_package(source: str | os.PathLike | Package, *, fixed_base: bool = True
         _exclude_static_children(spec)
     else:
         root_body.add_freejoint()
-    _add_scene(spec, urdf, root_body, lift=not fixed_base, dress=scene)
+    try:
+        model = spec.compile()
+    except ValueError as exc:
+        raise LoadError(urdf, f"MuJoCo cannot compile this model: {exc}") from None
+    limits.stiffen(spec, model)
+    _add_scene(spec, model, root_body, lift=not fixed_base, dress=scene)
     return spec
 
 
@@ -169,12 +178,8 @@ def _exclude_static_children(spec: mujoco.MjSpec) -> None:
     walk(spec.worldbody, True)
 
 
-def _add_scene(spec: mujoco.MjSpec, urdf: Path, root: mujoco.MjsBody, lift: bool,
+def _add_scene(spec: mujoco.MjSpec, model: mujoco.MjModel, root: mujoco.MjsBody, lift: bool,
                dress: bool | str = True) -> None:
-    try:
-        model = spec.compile()
-    except ValueError as exc:
-        raise LoadError(urdf, f"MuJoCo cannot compile this model: {exc}") from None
     data = mujoco.MjData(model)
     mujoco.mj_kinematics(model, data)
     low = lowest_collision_point(model, data)

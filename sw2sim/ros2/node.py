@@ -63,15 +63,21 @@ class Simulation:
         mujoco.mj_forward(m, self.data)
         self.lock = threading.RLock()
         self.places = {}
-        limits = {}
-        from ..ros_control import read_joint_limits
-        for name, lim in read_joint_limits(package).items():
-            limits[name] = lim.effort if lim.effort and lim.effort > 0 else math.inf
+        # the URDF's limits as Gazebo's DART holds them (sw2sim.ros2.hardware)
+        self.bounds = hardware.joint_bounds(package)
+        for name, b in self.bounds.items():
+            zero = [f'{k}="0"' for k in ("effort", "velocity") if getattr(b, k) == 0]
+            if zero:
+                say(f"sw2sim ros2: joint {name}: <limit {' '.join(zero)}> in the URDF, which "
+                    "Gazebo's DART takes as it is: the joint cannot be "
+                    f"{'moved' if b.velocity == 0 else 'driven'}. Enter the joint's real "
+                    "limits in the exporter (or the URDF).")
+        self.constrained = hardware.constrained_joints(m, self.bounds)
         for name in self.joint_names:
             j = m.joint(name).id
             self.places[name] = (int(m.jnt_qposadr[j]), int(m.jnt_dofadr[j]),
                                  m.actuator(f"ros2_control_{name}").id,
-                                 limits.get(name, math.inf),
+                                 self.bounds.get(name, hardware.Bounds()).effort,
                                  1.0 / max(float(m.dof_invweight0[m.jnt_dofadr[j]]), 1e-9))
         self.dt = float(m.opt.timestep)
         self.period = max(1.0 / setup.update_rate, self.dt)
@@ -200,11 +206,15 @@ class Simulation:
                 law = hardware.joint_law(
                     self.commands.get(name, {}), q, v, effort_limit=limit, inertia=inertia,
                     dt=self.dt, position_gain=gain, enforce=self.setup.enforce_command_limits,
-                    interface_limits=joint.limits) if joint.command else (0.0, 0.0, 0.0)
+                    interface_limits=joint.limits, allowed=hardware.servo_range(
+                        self.bounds.get(name, hardware.Bounds()), q, self.dt)
+                ) if joint.command else (0.0, 0.0, 0.0)
                 d.ctrl[a] = law[0]
                 m.actuator_biasprm[a, 1] = law[1]
                 m.actuator_biasprm[a, 2] = law[2]
+            before = [float(d.qpos[qa]) for qa, _, _ in self.constrained]
             mujoco.mj_step(m, d)
+            hardware.constrain(m, d, self.constrained, before)
         self._publish(float(self.data.time))
 
     def _publish(self, now: float) -> None:
