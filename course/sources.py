@@ -45,7 +45,10 @@ REPOSITORIES = {"solidworks_urdf_exporter": "ros/solidworks_urdf_exporter",
                 "robot_state_publisher": "ros/robot_state_publisher",
                 "ros_gz": "gazebosim/ros_gz",
                 "rclpy": "ros2/rclpy",
-                "rmw": "ros2/rmw"}
+                "rmw": "ros2/rmw",
+                "sdformat": "gazebosim/sdformat",
+                "gz-physics": "gazebosim/gz-physics",
+                "dart": "dartsim/dart"}
 # A link to lines of a file at a tag or branch: blob/<ref>/<file>#L<a>[-L<b>].
 URL = re.compile(r"^https://github\.com/(?P<repo>[\w.-]+/[\w.-]+)/blob/(?P<ref>[\w.-]+)/"
                  r"(?P<file>[^#\s]+)#L(?P<first>\d+)(?:-L(?P<last>\d+))?$")

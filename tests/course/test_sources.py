@@ -37,7 +37,8 @@ from repository import ROOT
 MIRRORS = Path("/work/.mirror")
 # Refs a link may name besides release tags: branches that no longer move.
 FIXED_BRANCHES = {"noetic-devel", "jazzy"}
-RELEASE_TAG = re.compile(r"^\d+\.\d+\.\d+$")
+# A release: 1.2.3, or as Gazebo's libraries and DART name theirs (sdformat14_14.8.0, v6.13.2).
+RELEASE_TAG = re.compile(r"^(?:[a-z][a-z-]*\d+_|v)?\d+\.\d+\.\d+$")
 PAGES = sorted(sources.PAGES.rglob("*.md"))
 
 
