@@ -105,6 +105,7 @@ def test_the_four_wheelers_wheels_get_a_velocity_controller(tmp_path):
     readme = (out / "README.md").read_text()
     assert ('/wheel_velocity_controller/commands std_msgs/msg/Float64MultiArray '
             '"{data: [1.0, 1.0, 1.0, 1.0]}"') in readme
+    assert sw2sim.load_package(out).compile().nmesh == 5   # the port loads, every mesh with it
 
 
 def test_the_exporters_empty_limits_are_freed_so_that_the_joints_can_move(tmp_path):

@@ -1,4 +1,5 @@
-"""sw2sim port on every lesson package, Arm_Assembly and two raw exporter packages: the ports
+"""sw2sim port on every lesson package, Arm_Assembly and a raw exporter package (the exporter's
+own 3-DOF arm, whose port gets the controllers of sw2sim.port.defaults): the ports
 build with colcon (ament_cmake from PyPI), their URDFs load in MuJoCo and yourdfpy with
 every mesh, and their launch files name only what Jazzy and the installed tree have.
 
@@ -25,7 +26,7 @@ from repository import ROOT
 from sw2sim.port import port
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "check"))
-from exporter_packages import FOUR_WHEELER_NESTED, THREE_DOF_ARM, write_export  # noqa: E402
+from exporter_packages import THREE_DOF_ARM, write_export  # noqa: E402  (tests/tool/check)
 
 # colcon and ament_cmake from PyPI live in the ROS 2 environment (tests/ros2_environment.py)
 VENV = ros2_environment.VENV
@@ -37,19 +38,17 @@ SOURCES = {"example_1": ("example_1", {"effort_joints": [WHEELS]}),
            "example_2": ("example_2", {}), "example_3": ("example_3", {}),
            "example_4": ("example_4", {}), "example_5": ("example_5", {}),
            "Arm_Assembly": ("arm_assembly", {}),
-           FOUR_WHEELER_NESTED.name: ("r4_wheeler_nested_description", {}),
            THREE_DOF_ARM.name: ("r3_dof_arm_description", {})}
-RAW = {e.name: e for e in (FOUR_WHEELER_NESTED, THREE_DOF_ARM)}   # (tests/tool/check)
 
 
 @pytest.fixture(scope="module")
 def workspace(tmp_path_factory):
     """A colcon workspace whose src/ holds the port of every source."""
     top = tmp_path_factory.mktemp("port_ws")
+    raw = write_export(THREE_DOF_ARM, top / "raw")
     reports = {}
     for source, (name, options) in SOURCES.items():
-        folder = write_export(RAW[source], top / "raw") if source in RAW else \
-            ROOT / "examples" / source
+        folder = raw if source == THREE_DOF_ARM.name else ROOT / "examples" / source
         reports[name] = port(folder, top / "src" / name, **options)
     return top, reports
 
@@ -62,8 +61,8 @@ def test_each_port_has_the_expected_name_and_files(workspace):
                     "config/controllers.yaml", "launch/display.launch.py",
                     "launch/gazebo.launch.py"):
             assert (report.package_dir / rel).is_file(), (name, rel)
-    assert any("r4_wheeler_nested_description" in c and "leading digit" in c
-               for c in reports["r4_wheeler_nested_description"].choices)
+    assert any("r3_dof_arm_description" in c and "leading digit" in c
+               for c in reports["r3_dof_arm_description"].choices)
     assert reports["example_5"].controllers[0] == "joint_state_broadcaster"
     assert len(reports["example_5"].controllers) == 8
 
