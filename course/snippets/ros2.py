@@ -18,8 +18,12 @@ code there when the page reaches it. A command may start a node that another pag
 (Practice 2 runs Practice 1's); the runner takes its code from that page.
 
 Every process runs with ROS 2 kept on 127.0.0.1 in the session's own domain id, in a
-process group of its own, and `close()` stops them all, also after a failure. Blocks
-marked `data-ros2-needs` (ROS 2 Jazzy's own `ros2` command, Gazebo Sim) are not run.
+process group of its own, and `close()` stops them all, also after a failure. A page's
+`export ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST` gives way to sw2sim.ros2.discovery's
+setting, which keeps every socket on 127.0.0.1 where LOCALHOST alone does not
+(tests/ros2/test_loopback.py runs a node with LOCALHOST alone against `sw2sim ros2`).
+Blocks marked `data-ros2-needs` (ROS 2 Jazzy's own `ros2` command, Gazebo Sim) are not
+run.
 """
 
 from __future__ import annotations
@@ -198,7 +202,9 @@ class Session:
             raise Ros2BlockError(command.location,
                                  f"`{command.text}` exited with {ended.done.returncode}:\n"
                                  f"{(ended.done.stdout + ended.done.stderr)[-1500:]}")
-        self.cwd, self.env = ended.cwd, ended.env
+        # what the command exported holds, but ROS 2 stays on 127.0.0.1 in the session's
+        # domain (the pages' `export ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST` included)
+        self.cwd, self.env = ended.cwd, environment(self.domain, ended.env)
 
     # -- the end -----------------------------------------------------------------------
     def check(self) -> None:

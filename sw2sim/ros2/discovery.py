@@ -190,13 +190,14 @@ def _address(text: str) -> str:
     return f"[{socket.inet_ntop(socket.AF_INET6, words)}]:{int(port, 16)}"
 
 
+def is_loopback(text: str) -> bool:
+    """Whether `address:port` (as sockets() gives it) is on a loopback address."""
+    address = ipaddress.ip_address(text.rsplit(":", 1)[0].strip("[]"))
+    if isinstance(address, ipaddress.IPv6Address) and address.ipv4_mapped:
+        address = address.ipv4_mapped
+    return address.is_loopback
+
+
 def beyond_loopback(pid: int | str = "self") -> list[str]:
     """The process's sockets bound to anything but a loopback address."""
-    outside = []
-    for text in sockets(pid):
-        address = ipaddress.ip_address(text.rsplit(":", 1)[0].strip("[]"))
-        if isinstance(address, ipaddress.IPv6Address) and address.ipv4_mapped:
-            address = address.ipv4_mapped
-        if not address.is_loopback:
-            outside.append(text)
-    return outside
+    return [text for text in sockets(pid) if not is_loopback(text)]

@@ -3,14 +3,14 @@ place of Gazebo Sim, gz_ros2_control and robot_state_publisher (sw2sim.ros2.node
 
 One process, the node itself, and the watcher of its shared-memory files (below). A ROS 1
 export (a catkin package.xml, no config/controllers.yaml) is first ported into a temporary
-folder with sw2sim.port, removed at the end. ROS 2 stays on this machine (sw2sim.ros2.discovery), in
-the user's ROS_DOMAIN_ID or 0, printed for a second terminal to match; should Fast DDS open
-a socket beyond 127.0.0.1 all the same, the process says so and stops. The process stops
-on Ctrl-C (also where the shell started it with Ctrl-C ignored, in the background of a
-script), SIGTERM, SIGHUP, after --duration seconds, and when its parent process dies.
-Fast DDS's shared-memory files go with it however it ends: Fast DDS removes them on the
-way out, and a watcher in a session of its own (sw2sim.ros2.shm) removes those a SIGKILL
-leaves; each run also removes the ones killed runs left.
+folder with sw2sim.port, removed at the end. ROS 2 stays on this machine
+(sw2sim.ros2.discovery), in the user's ROS_DOMAIN_ID or 0, printed for a second terminal to
+match; should Fast DDS open a socket beyond 127.0.0.1 all the same, the process says so and
+stops. The process stops on Ctrl-C (also where the shell started it with Ctrl-C ignored, in
+the background of a script), SIGTERM, SIGHUP, after --duration seconds, and when its parent
+process dies. Fast DDS's shared-memory files go with it however it ends: Fast DDS removes
+them on the way out, and a watcher in a session of its own (sw2sim.ros2.shm) removes those
+a SIGKILL leaves; each run also removes the ones killed runs left.
 """
 
 from __future__ import annotations
@@ -139,9 +139,10 @@ def _serve(package, setup, domain, duration, realtime, view, stop, parent, say) 
         node = rclpy.create_node("sw2sim", context=context)
         outside = discovery.beyond_loopback()
         if outside:
-            say(f"sw2sim ros2: Fast DDS opened sockets beyond 127.0.0.1 ({', '.join(outside)}): "
-                f"it did not apply the profile {discovery.profile_file()} (its messages above "
-                "say why); stopped, to keep ROS 2 on this machine")
+            say(f"sw2sim ros2: Fast DDS opened sockets beyond 127.0.0.1 "
+                f"({', '.join(outside)}): it did not apply the profile "
+                f"{discovery.profile_file()} (its messages above say why); stopped, to keep "
+                "ROS 2 on this machine")
             return 2
         try:
             sim = Simulation(package, setup, node, say=say)

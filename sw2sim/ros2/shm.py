@@ -32,7 +32,6 @@ process or of its whole process group included), and then sweeps. Run as a scrip
 from __future__ import annotations
 
 import ctypes
-import errno
 import fcntl
 import os
 import re
@@ -45,7 +44,7 @@ DIRECTORY = Path("/dev/shm")
 DOMAIN = "fastrtps"   # SharedMemTransport's domain name in Fast DDS 2.x
 SEGMENT = re.compile(rf"{DOMAIN}_([0-9a-f]{{16}})(?:_el|_sl)?$")
 PORT = re.compile(rf"(?:sem\.)?{DOMAIN}_port(\d+)(?:_el|_sl|_mutex)?$")
-WAIT_GONE = 10.0   # s: how long the watcher waits for the ended process to release its files
+WAIT_GONE = 10.0   # s the watcher waits for the ended process to release its files
 # s: a port's semaphore alone is a leftover only once it is older than the moment between
 # its creation and the port's, in Fast DDS's open_port_internal
 LONE_SEMAPHORE_AGE = 5.0
@@ -249,20 +248,17 @@ def _start_time(pid: int) -> str | None:
 
 def _main(pid: int, fd: int) -> int:
     started = _start_time(pid)
-    while True:   # until every writer of the pipe (the watched process) has ended
-        try:
-            if not os.read(fd, 4096):
-                break
-        except InterruptedError:
-            continue
-        except OSError as exc:
-            if exc.errno != errno.EINTR:
-                break
+    try:
+        while os.read(fd, 4096):   # until the pipe's one writer, the watched process, ends
+            pass
+    except OSError:
+        pass
     os.close(fd)
     # The pipe closes as the process ends; its locks and mappings go with the rest of its
     # files. Wait until it is a zombie or gone (or its number is another process's).
     deadline = time.monotonic() + WAIT_GONE
-    while started is not None and _start_time(pid) == started and time.monotonic() < deadline:
+    while (started is not None and _start_time(pid) == started
+           and time.monotonic() < deadline):
         time.sleep(0.01)
     sweep()
     return 0
