@@ -190,3 +190,19 @@ def test_defaults_go_to_joints_nothing_else_commands(tmp_path):
     edit(src / "config" / "joint_names_example_3.yaml", "effort_controllers/", "nothing/", 2)
     report = port(src, tmp_path / "out4")
     assert "joint_trajectory_controller" not in report.controllers
+
+
+def test_mimic_joints_axisless_joints_and_an_effort_of_0_are_named(tmp_path):
+    """A joint that mimics another and one with the axis 0 0 0 get no controller; a joint
+    with a travel but an effort of 0 gets one, and is named, as Gazebo gives it no force."""
+    src = write_export(ORIGINAL_3_DOF_ARM, tmp_path / "src")
+    urdf = src / "urdf" / f"{ORIGINAL_3_DOF_ARM.name}.urdf"
+    edit_re(urdf, r'(name="joint1".*?xyz=)"-1 0 0"', r'\1"0 0 0"')
+    edit_re(urdf, r'(name="joint2".*?lower=)"0"(\s+upper=)"0"', r'\1"-1"\2"1"')
+    edit_re(urdf, r'(name="joint3".*?)(<safety_controller)',
+            r'\1<mimic joint="joint2" multiplier="1" offset="0" />\n    \2')
+    report = port(src, tmp_path / "out")
+    assert _commands(tmp_path / "out") == {"joint1": [], "joint2": ["position"], "joint3": []}
+    assert any("joint1 (its axis is 0 0 0)" in c and "joint3 (it mimics joint2)" in c
+               for c in report.choices)
+    assert any(c.startswith("joint2: the <limit> gives effort 0") for c in report.choices)
