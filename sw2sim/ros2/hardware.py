@@ -103,7 +103,8 @@ def joint_law(commands: dict, q: float, v: float, *, effort_limit: float, inerti
 # Here: `servo_range` clips the servo's target for joint_law; after MuJoCo's step, which
 # moves the positions with the new velocities as DART does, `constrain` gives the joints
 # whose velocity left its range the impulse that brings it back, solved together through
-# the inverse inertia of the step's start, and moves their positions by what it changed.
+# the matrix the step itself used (`step_inverse`), and moves their positions by what it
+# changed.
 
 MAX_ERROR_REDUCTION_VELOCITY = 10.0   # DART's JointConstraint default, rad/s or m/s
 
@@ -174,6 +175,28 @@ def constrained_joints(model, bounds: dict[str, Bounds]) -> list[tuple[int, int,
     return joints
 
 
+def step_inverse(model, data) -> np.ndarray:
+    """The inverse of the matrix that turned the step's forces into its change of velocity
+    (after `mujoco.mj_step`, so at the step's start): M, less the time step times the
+    velocity derivative of the forces for the implicit integrators (the actuators' laws
+    damp implicitly), so that an impulse acts as the step's own forces did. DART applies
+    its impulses through the inverse inertia after an explicit step; the same impulse
+    through M alone would leave a joint held against its limit unable to move the link
+    that carries it."""
+    full = np.zeros((model.nv, model.nv))
+    mujoco.mj_fullM(model, data, full)
+    if model.opt.integrator in (mujoco.mjtIntegrator.mjINT_IMPLICIT,
+                                mujoco.mjtIntegrator.mjINT_IMPLICITFAST) and model.nD:
+        derivative = np.zeros((model.nv, model.nv))
+        mujoco.mju_sparse2dense(derivative, data.qDeriv, model.D_rownnz, model.D_rowadr,
+                                model.D_colind)
+        if model.opt.integrator == mujoco.mjtIntegrator.mjINT_IMPLICITFAST:
+            lower = np.tril(derivative)   # implicitfast keeps the lower half, symmetric
+            derivative = lower + np.tril(derivative, -1).T
+        full -= model.opt.timestep * derivative
+    return np.linalg.inv(full)
+
+
 def constrain(model, data, joints, positions) -> int:
     """After `mujoco.mj_step`: the impulses of DART's joint constraints. `joints` lists
     (qpos address, dof address, Bounds) of hinge and slide joints, `positions` their
@@ -190,11 +213,8 @@ def constrain(model, data, joints, positions) -> int:
     v = data.qvel[dofs].copy()
     if np.all((v >= ranges[:, 0]) & (v <= ranges[:, 1])):
         return 0
-    unit = np.zeros((len(dofs), model.nv))
-    unit[np.arange(len(dofs)), dofs] = 1.0
-    columns = np.zeros_like(unit)            # M⁻¹ at the step's start, one column per joint
-    mujoco.mj_solveM(model, data, columns, unit)
-    inverse = columns[:, dofs]               # the joints' block of M⁻¹
+    columns = step_inverse(model, data)[:, dofs].T   # the change of every velocity that
+    inverse = columns[:, dofs]                       # a unit impulse on each joint makes
     side = np.zeros(len(dofs), dtype=int)    # 0 free, -1 held at its lowest, +1 at its highest
     impulse = np.zeros(len(dofs))
     for _ in range(4 * len(dofs) + 1):

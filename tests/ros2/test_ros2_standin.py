@@ -1,5 +1,6 @@
 """`sw2sim ros2` on example_3 as `sw2sim port` writes it, seen by an independent rclpy node:
-the arm follows a trajectory to each controller, /clock advances, /robot_description
+the arm follows a trajectory to each controller, the end arm sent past its limit stops
+on it at its velocity limit (as DART holds it), /clock advances, /robot_description
 holds the URDF, and /tf_static and /tf give MuJoCo's kinematics."""
 
 from __future__ import annotations
@@ -25,13 +26,18 @@ def compose(chain):
 def test_an_independent_node_drives_the_arm_and_sees_mujocos_kinematics(ros2, ported_example_3):
     ros2.standin(ported_example_3)
     out = ros2.record("4", "--trajectory", "middle_arm_controller", "middle_arm_joint", "0.5", "2",
-                      "--trajectory", "end_arm_controller", "end_arm_joint", "-0.3", "2",
+                      "--trajectory", "end_arm_controller", "end_arm_joint", "-5.0", "2",
                       "--state", "middle_arm_controller", "jtc")
     assert "ROS_DOMAIN_ID=" in ros2.log("standin")
     # /clock advances; the last joint state is at the targets
     assert out["clock"] == sorted(out["clock"]) and out["clock"][-1] > out["clock"][0] + 3.5
     t, q, v = out["states"][-1]
-    assert abs(q["middle_arm_joint"] - 0.5) < 0.01 and abs(q["end_arm_joint"] + 0.3) < 0.01
+    assert abs(q["middle_arm_joint"] - 0.5) < 0.01
+    # the end arm, sent to -5 rad, stops on its -0.7854 rad limit and never passes it, and
+    # turns no faster than its URDF velocity limit of 2 rad/s, however hard its PID pushes
+    assert abs(q["end_arm_joint"] + 0.7854) < 0.02
+    assert min(s[1]["end_arm_joint"] for s in out["states"]) > -0.7854 - 0.02
+    assert max(abs(s[2]["end_arm_joint"]) for s in out["states"]) < 2.0 + 1e-6
     # on the way for about the trajectory's 2 s (a linear reference), not a jump to it: the
     # pace of the states heard between 10 % and 90 % of the way (a busy machine's recorder
     # misses messages, so the first one heard past a mark may come late)
