@@ -183,7 +183,7 @@ def test_a_sigkill_leaves_no_shared_memory_files(ros2, ported_example_3):
 
 def test_duration_ends_it(ros2, ported_example_3):
     process = ros2.start(str(PYTHON), "-m", "sw2sim", "ros2", str(ported_example_3),
-                         "--realtime", "0", "--duration", "1", name="standin")
+                         "--realtime", "0", "--duration", "0.2", name="standin")
     assert process.wait(timeout=20) == 0
 
 
@@ -199,7 +199,9 @@ def test_it_ends_with_its_parent(ros2, ported_example_3):
         assert time.monotonic() < deadline
         time.sleep(0.1)
     child = int((ros2.home / "parent.log").read_text().split()[0])
-    time.sleep(3)
+    while "controllers:" not in ros2.log("parent"):   # the child is up (it prints there)
+        assert time.monotonic() < deadline, ros2.log("parent")
+        time.sleep(0.1)
     parent.kill()
     parent.wait()
     deadline = time.monotonic() + 5
