@@ -1,7 +1,8 @@
 """What a ROS 2 package tells ros2_control: the URDF's `<ros2_control>` block (each joint's
 command and state interfaces and their `min`/`max` params), the gz_ros2_control plugin's
-settings, and the controllers' YAML in ros2_control's format (read generically: a node's
-`ros__parameters`, with the `/**` wildcard's under them)."""
+settings (`position_proportional_gain`, `hold_joints`), and the controllers' YAML in
+ros2_control's format (read generically: a node's `ros__parameters`, with the `/**`
+wildcard's under them)."""
 
 from __future__ import annotations
 
@@ -35,6 +36,10 @@ class Setup:
     position_proportional_gain: float
     controllers: dict[str, str]              # name -> type, in the YAML's order
     parameters: dict[str, dict]              # node name -> its parameters
+    hold_joints: bool = True                 # the gz_ros2_control plugin's <hold_joints>
+    hardware: list[tuple[str, str, list[str]]] = dataclasses.field(default_factory=list)
+    # each <ros2_control> block: (name, its <hardware><plugin>, its joints)
+    problems: list[str] = dataclasses.field(default_factory=list)   # to tell the user
 
     def params(self, node: str) -> dict:
         return {**self.parameters.get("**", {}), **self.parameters.get(node, {})}
@@ -70,6 +75,22 @@ def read_ros2_control(robot) -> dict[str, JointInterfaces]:
     return joints
 
 
+def hardware_components(robot) -> list[tuple[str, str, list[str]]]:
+    """Each <ros2_control> block's name, hardware plugin and joints, in the URDF's order."""
+    return [(block.get("name", ""), (block.findtext("hardware/plugin") or "").strip(),
+             [j.get("name") for j in block.findall("joint")])
+            for block in robot.findall("ros2_control")]
+
+
+def sdf_bool(text: str | None, default: bool) -> bool | None:
+    """An SDF boolean as sdformat reads it: true/1 or false/0 (any case); None when the
+    text is neither."""
+    if text is None or not text.strip():
+        return default
+    word = text.strip().lower()
+    return True if word in ("true", "1") else False if word in ("false", "0") else None
+
+
 def gz_plugin(robot):
     for plugin in robot.iter("plugin"):
         if (plugin.get("filename") or "") in GZ_PLUGINS or "gz_ros2_control" in (plugin.get("name") or ""):
@@ -98,6 +119,11 @@ def _nodes(document) -> dict[str, dict]:
             found[name] = dict(params or {})
     return {name: {**wildcard, **params} for name, params in found.items()} | (
         {"**": wildcard} if wildcard else {})
+
+
+def parameters_of(document) -> dict[str, dict]:
+    """A ROS 2 parameter file's nodes: node name -> its parameters, wildcards merged."""
+    return _nodes(document)
 
 
 def controllers_yaml(root: Path, plugin) -> Path | None:
@@ -144,11 +170,19 @@ def read(package) -> Setup:
         if isinstance(key, str) and key.endswith(".type") and isinstance(value, str):
             controllers[key[:-5]] = value
     gain = 0.1
+    hold, problems = True, []
     if plugin is not None:
         gain = _float(plugin.findtext("position_proportional_gain"), 0.1)
+        text = plugin.findtext("hold_joints")
+        hold = sdf_bool(text, True)
+        if hold is None:
+            problems.append(f"{package.urdf.name}: the gz_ros2_control plugin's <hold_joints> is "
+                            f"{text.strip()!r}; write true or false (taken as true, the default)")
+            hold = True
     return Setup(name=package.name, root=package.root, urdf=package.urdf,
                  joints=read_ros2_control(robot),
                  update_rate=_float(manager.get("update_rate"), 100.0),
                  enforce_command_limits=bool(manager.get("enforce_command_limits", False)),
                  position_proportional_gain=gain, controllers=controllers,
-                 parameters=parameters)
+                 parameters=parameters, hold_joints=hold,
+                 hardware=hardware_components(robot), problems=problems)

@@ -1,6 +1,7 @@
 """The ros2_controllers (Jazzy) the stand-in runs, without ROS: each reads the joints'
-state, keeps what its topics sent, and writes its command interfaces at every update of
-the controller manager. sw2sim.ros2.node connects them to rclpy.
+state, keeps what its topics sent, and, while active, writes its command interfaces at
+every update of the controller manager (sw2sim.ros2.manager activates and deactivates
+them; what an inactive one receives is dropped). sw2sim.ros2.node connects them to rclpy.
 
 - joint_state_broadcaster/JointStateBroadcaster: the joints' state interfaces.
 - joint_trajectory_controller/JointTrajectoryController: a JointTrajectory on
@@ -9,20 +10,18 @@ the controller manager. sw2sim.ros2.node connects them to rclpy.
   the reference is interpolated as JTC's `splines` method does: linearly for points
   with positions only (the velocity being the slope), cubic with velocities, quintic
   with accelerations; after the last point it holds it. On activation it holds the
-  current position. With a single `effort` (or `velocity`) command interface each joint
-  has a PID (control_toolbox) on the position error and the velocity error, plus
-  `ff_velocity_scale` times the reference's velocity; a `position` interface gets the
-  reference's position. `~/controller_state` is a JointTrajectoryControllerState.
+  current position. With a lone `effort` (or `velocity`) command interface each joint
+  has a PID (sw2sim.ros2.pid, control_toolbox's) on the position and velocity errors,
+  plus `ff_velocity_scale` times the next point's velocity outside its clamp; on
+  deactivation it zeroes its velocity and effort interfaces. A `position` interface gets
+  the reference's position. `~/controller_state` is a JointTrajectoryControllerState.
 - forward_command_controller's JointGroupEffortController, JointGroupVelocityController
   and JointGroupPositionController: `~/commands` (Float64MultiArray, one value per joint)
-  written to the interface as they are.
-- pid_controller/PidController: `~/reference` (MultiDOFCommand: values, and values_dot
-  when `reference_and_state_interfaces` has two), a PID per degree of freedom from the
-  first state interface's error (and the second's, else the error's change), written to
-  `command_interface`; `~/controller_state` is a MultiDOFStateStamped.
+  written to the interface as they are (a non-finite one dropped; the interfaces keep
+  their value until the first after activation). pid_controller: sw2sim.ros2.pid.
 
 An effort a PID computes is kept as a law affine in the joint's position and velocity
-(sw2sim.ros2.hardware), with the integral term updated once per controller update.
+(sw2sim.ros2.hardware), its integral term updated once per controller update.
 Not simulated: goal tolerances, the action server, partial goals unless
 `allow_partial_joints_goal`, speed scaling, chained controllers.
 """
@@ -30,8 +29,9 @@ Not simulated: goal tolerances, the action server, partial goals unless
 from __future__ import annotations
 
 import math
-import threading
 
+from .controller_base import ConfigError, Controller, gains_of, value
+from .pid import Pid, PidController
 from .trajectory import Trajectory
 
 JSB = "joint_state_broadcaster/JointStateBroadcaster"
@@ -44,118 +44,19 @@ PID = "pid_controller/PidController"
 SUPPORTED = (JSB, JTC, PID, *FORWARD)
 
 
-class ConfigError(ValueError):
-    """A controller's parameters cannot be used (the message says which and why)."""
-
-
-def _gains(params: dict, joint: str) -> dict:
-    gains = params.get("gains") or {}
-    found = gains.get(joint)
-    if isinstance(found, dict):
-        return found
-    # the flattened form: gains.<joint>.p
-    return {k.split(".", 2)[2]: v for k, v in params.items()
-            if isinstance(k, str) and k.startswith(f"gains.{joint}.")}
-
-
-class Pid:
-    """control_toolbox's Pid (Jazzy, `compute_command(error, error_dot, dt)`), with its
-    proportional and derivative terms returned as parts of an affine law."""
-
-    def __init__(self, gains: dict):
-        f = lambda key, default: float(gains.get(key, default))  # noqa: E731
-        self.p, self.i, self.d = f("p", 0.0), f("i", 0.0), f("d", 0.0)
-        i_clamp = f("i_clamp", math.inf)
-        self.i_max = f("i_clamp_max", math.inf)
-        self.i_min = f("i_clamp_min", -math.inf)
-        if not math.isfinite(self.i_max):
-            self.i_max = abs(i_clamp)
-        if not math.isfinite(self.i_min):
-            self.i_min = -abs(i_clamp)
-        self.u_max, self.u_min = f("u_clamp_max", math.inf), f("u_clamp_min", -math.inf)
-        self.strategy = str(gains.get("antiwindup_strategy", "legacy"))
-        self.legacy_antiwindup = bool(gains.get("antiwindup", False))
-        self.deadband = f("error_deadband", 0.0)
-        self.i_term = 0.0
-        self.last_error = 0.0
-
-    def reset(self) -> None:
-        self.i_term, self.last_error = 0.0, 0.0
-
-    def integrate(self, error: float, dt: float) -> float:
-        """One update of the integral term on this update's error; the term to add."""
-        if dt <= 0 or not math.isfinite(error):
-            return self._clamped_i()
-        if abs(error) > self.deadband:
-            step = self.i * dt * error
-            if self.strategy == "legacy":
-                self.i_term += step
-                if self.legacy_antiwindup:
-                    self.i_term = min(max(self.i_term, self.i_min), self.i_max)
-            else:   # none, conditional integration and back calculation: integrate, clamp
-                self.i_term += step
-        if self.strategy != "legacy":
-            self.i_term = min(max(self.i_term, self.i_min), self.i_max)
-        return self._clamped_i()
-
-    def _clamped_i(self) -> float:
-        if self.strategy == "legacy" and not self.legacy_antiwindup:
-            return min(max(self.i_term, self.i_min), self.i_max)
-        return self.i_term
-
-    def law(self, reference: float, reference_dot: float, error: float, dt: float,
-            feedforward: float = 0.0):
-        """p (reference - q) + d (reference_dot - v) + i_term + feedforward, as
-        (c0, cq, cv) in the joint's q and v; the integral updated with `error`."""
-        i_term = self.integrate(error, dt)
-        return (self.p * reference + self.d * reference_dot + i_term + feedforward,
-                -self.p, -self.d)
-
-    def clamp(self, law, q: float, v: float):
-        from ..ros.hardware import saturate
-        if math.isfinite(self.u_min) or math.isfinite(self.u_max):
-            return saturate(law, self.u_min, self.u_max, q, v)
-        return law
-
-
-def value(law, q: float, v: float) -> float:
-    if isinstance(law, tuple):
-        return law[0] + law[1] * q + law[2] * v
-    return float(law)
-
-
-class Controller:
-    """One controller: `update` returns {joint: {interface: number or Law}}."""
-
-    kind = ""
-    state_topic = None
-
-    def __init__(self, name: str, kind: str, params: dict, joints: dict):
-        self.name, self.kind, self.params = name, kind, params
-        self.lock = threading.Lock()
-        self.available = joints    # joint -> JointInterfaces of the URDF's ros2_control
-        self.output: dict[str, dict] = {}
-
-    def check_joints(self, names) -> list[str]:
-        names = [str(n) for n in (names or [])]
-        if not names:
-            raise ConfigError(f"{self.name}: no joints given")
-        unknown = [n for n in names if n not in self.available]
-        if unknown:
-            raise ConfigError(f"{self.name}: joint(s) {', '.join(unknown)} not in the URDF's "
-                              "<ros2_control> block")
-        return names
-
-    def activate(self, state) -> None:
-        pass
-
-    def update(self, now: float, period: float, state) -> dict:
-        return {}
-
-
 class JointStateBroadcaster(Controller):
+    """Publishes every state interface when `joints` or `interfaces` is empty (ALL),
+    else the named ones."""
+
     def update(self, now, period, state):
         return {}
+
+    def state_interface_names(self, available):
+        joints = [str(j) for j in self.params.get("joints") or []]
+        interfaces = [str(i) for i in self.params.get("interfaces") or []]
+        if not joints or not interfaces:
+            return list(available)
+        return [f"{j}/{i}" for j in joints for i in interfaces]
 
 
 class Forward(Controller):
@@ -171,18 +72,30 @@ class Forward(Controller):
         self.errors: list[str] = []
 
     def activate(self, state):
-        # the interfaces keep what the hardware holds: 0 for effort and velocity (gz_system
-        # starts them so), the current position for position
-        self.values = [state[j][0] if self.interface == "position" else 0.0 for j in self.joints]
+        # a command that came while inactive is dropped; until the next one the interfaces
+        # keep what the hardware holds (gz_system starts them at 0, or at initial_value)
+        with self.lock:
+            self.values = None
+
+    def deactivate(self):
+        with self.lock:
+            self.values = None
+        return {}
 
     def command(self, data) -> None:
         data = list(data)
+        if not all(math.isfinite(x) for x in data):
+            self.errors.append("Non-finite value received. Dropping message")
+            return
         if len(data) != len(self.joints):
             self.errors.append(f"command size ({len(data)}) does not match number of "
                                f"interfaces ({len(self.joints)})")
             return
         with self.lock:
             self.values = [float(x) for x in data]
+
+    def command_interface_names(self):
+        return [f"{j}/{self.interface}" for j in self.joints]
 
     def update(self, now, period, state):
         with self.lock:
@@ -204,9 +117,13 @@ class JointTrajectory(Controller):
                     raise ConfigError(f"{name}: joint {joint} has no {interface!r} command "
                                       "interface in the URDF's <ros2_control> block")
         only = self.command_interfaces if len(self.command_interfaces) == 1 else []
-        self.closed_loop = only in (["effort"], ["velocity"]) and not params.get("open_loop_control")
-        self.pids = {j: Pid(_gains(params, j)) for j in self.joints} if self.closed_loop else {}
-        self.ff = {j: float(_gains(params, j).get("ff_velocity_scale", 0.0)) for j in self.joints}
+        # the PID adapter: on a lone velocity interface (unless open_loop_control) or a
+        # lone effort interface
+        self.closed_loop = only == ["effort"] or (
+            only == ["velocity"] and not params.get("open_loop_control"))
+        self.pids = {j: Pid(gains_of(params, j), "jtc", f"{name}: gains.{j}")
+                     for j in self.joints} if self.closed_loop else {}
+        self.ff = {j: float(gains_of(params, j).get("ff_velocity_scale", 0.0)) for j in self.joints}
         self.partial = bool(params.get("allow_partial_joints_goal", False))
         self.pending: Trajectory | None = None
         self.trajectory: Trajectory | None = None
@@ -220,6 +137,21 @@ class JointTrajectory(Controller):
         self.pending = Trajectory(None, [0.0], [(positions, None, None)])
         for pid in self.pids.values():
             pid.reset()
+
+    def deactivate(self):
+        """on_deactivate: the velocity and effort interfaces set to 0 (the position one
+        keeps its value), the trajectory dropped."""
+        with self.lock:
+            self.pending = None
+        self.trajectory = None
+        return {j: {i: 0.0 for i in self.command_interfaces if i in ("velocity", "effort")}
+                for j in self.joints}
+
+    def command_interface_names(self):
+        return [f"{j}/{i}" for j in self.joints for i in self.command_interfaces]
+
+    def state_interface_names(self, available):
+        return [f"{j}/{i}" for j in self.joints for i in self.state_interfaces]
 
     def receive(self, names, stamp: float, points) -> None:
         """A JointTrajectory: joint names, header stamp (s, 0 = now), points as
@@ -284,10 +216,12 @@ class JointTrajectory(Controller):
             errors_v.append(desired[1][k] - v)
             commands = {}
             if self.closed_loop:
+                # ff_velocity_scale times the next command's velocity, plus the PID on the
+                # position and velocity errors (its u_clamp applies to the PID alone)
                 pid = self.pids[joint]
-                law = pid.law(desired[0][k], desired[1][k], error, period,
-                              feedforward=following[1][k] * self.ff[joint])
-                law = pid.clamp(law, q, v)
+                pid.command(error, desired[1][k] - v, period)
+                law = pid.affine(pid.p * desired[0][k] + pid.d * desired[1][k], -pid.p, -pid.d,
+                                 feedforward=following[1][k] * self.ff[joint])
                 commands[self.command_interfaces[0]] = (
                     law if self.command_interfaces[0] == "effort" else value(law, q, v))
             else:
@@ -330,109 +264,8 @@ class JointTrajectory(Controller):
         return message
 
 
-class PidController(Controller):
-    def __init__(self, name, kind, params, joints):
-        super().__init__(name, kind, params, joints)
-        self.joints = self.check_joints(params.get("dof_names"))
-        self.interface = str(params.get("command_interface", ""))
-        self.measured = [str(i) for i in params.get("reference_and_state_interfaces") or []]
-        if not self.interface or not 1 <= len(self.measured) <= 2:
-            raise ConfigError(f"{name}: command_interface and one or two "
-                              "reference_and_state_interfaces must be given")
-        for joint in self.joints:
-            if self.interface not in self.available[joint].command:
-                raise ConfigError(f"{name}: joint {joint} has no {self.interface!r} command "
-                                  "interface in the URDF's <ros2_control> block")
-        self.pids = {j: Pid(_gains(params, j)) for j in self.joints}
-        self.feedforward = {j: float(_gains(params, j).get("feedforward_gain", 0.0))
-                            for j in self.joints}
-        self.reference = {j: [math.nan, math.nan] for j in self.joints}
-        self.incoming = None
-        self.last = {}
-        self.errors: list[str] = []
-
-    def _measure(self, joint, state):
-        q, v = state[joint]
-        pick = {"position": (q, v), "velocity": (v, math.nan), "effort": (math.nan, math.nan)}
-        first = pick.get(self.measured[0], (math.nan, math.nan))
-        second = pick.get(self.measured[1])[0] if len(self.measured) == 2 and \
-            self.measured[1] in pick else math.nan
-        return first[0], second
-
-    def activate(self, state):
-        if self.params.get("set_current_state_as_first_setpoint", True):
-            for joint in self.joints:
-                self.reference[joint] = list(self._measure(joint, state))
-        for pid in self.pids.values():
-            pid.reset()
-
-    def receive(self, names, values, values_dot) -> None:
-        names, values, values_dot = list(names), list(values), list(values_dot)
-        if not names and len(values) == len(self.joints):
-            names = list(self.joints)
-        if len(names) != len(self.joints) or len(values) != len(self.joints) or \
-                any(n not in self.joints for n in names):
-            self.errors.append(f"size of input data names ({len(names)}) and/or values "
-                               f"({len(values)}) is not matching the expected size "
-                               f"({len(self.joints)})")
-            return
-        with self.lock:
-            self.incoming = {n: (values[k], values_dot[k] if k < len(values_dot) else math.nan)
-                             for k, n in enumerate(names)}
-
-    def update(self, now, period, state):
-        with self.lock:
-            incoming, self.incoming = self.incoming, None
-        if incoming:
-            for joint, (x, x_dot) in incoming.items():
-                if not math.isnan(x):
-                    self.reference[joint] = [x, x_dot if len(self.measured) == 2 else math.nan]
-        output = {}
-        for joint in self.joints:
-            q, v = state[joint]
-            ref, ref_dot = self.reference[joint]
-            measured, measured_dot = self._measure(joint, state)
-            if not (math.isfinite(ref) and math.isfinite(measured)):
-                continue
-            pid = self.pids[joint]
-            error = ref - measured
-            ff = ref * self.feedforward[joint] if len(self.measured) == 1 else \
-                (ref_dot if math.isfinite(ref_dot) else 0.0) * self.feedforward[joint]
-            on_position = self.measured[0] == "position"
-            if len(self.measured) == 2 and math.isfinite(ref_dot) and math.isfinite(measured_dot):
-                if on_position:   # the error and its rate are affine in q and v
-                    law = pid.law(ref, ref_dot, error, period, feedforward=ff)
-                else:             # a velocity error: its own rate is not a joint state
-                    i_term = pid.integrate(error, period)
-                    law = (pid.p * ref + pid.d * (ref_dot - measured_dot) + i_term + ff,
-                           0.0, -pid.p)
-            else:
-                # the error's rate from the last update, as compute_command(error, dt) does
-                rate = (error - pid.last_error) / period if period > 0 else 0.0
-                pid.last_error = error
-                i_term = pid.integrate(error, period)
-                law = (pid.p * error + pid.d * rate + i_term + ff, 0.0, 0.0)
-            law = pid.clamp(law, q, v)
-            output[joint] = {self.interface: law if self.interface == "effort"
-                             else value(law, q, v)}
-            self.last[joint] = (ref, measured, measured_dot, error,
-                                (ref_dot - measured_dot) if len(self.measured) == 2 else 0.0,
-                                period, value(law, q, v))
-        return output
-
-    def state_message(self, stamp, state):
-        from control_msgs.msg import MultiDOFStateStamped, SingleDOFState
-        message = MultiDOFStateStamped()
-        message.header.stamp = stamp
-        for joint in self.joints:
-            ref, measured, measured_dot, error, error_dot, step, out = self.last.get(
-                joint, (math.nan,) * 7)
-            message.dof_states.append(SingleDOFState(
-                name=joint, reference=float(ref), feedback=float(measured),
-                feedback_dot=float(measured_dot if len(self.measured) == 2 else 0.0),
-                error=float(error), error_dot=float(error_dot), time_step=float(step),
-                output=float(out)))
-        return message
+CLASSES = {JSB: JointStateBroadcaster, JTC: JointTrajectory, PID: PidController,
+           **{kind: Forward for kind in FORWARD}}
 
 
 def create(name: str, kind: str, params: dict, joints: dict) -> Controller:

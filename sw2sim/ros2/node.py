@@ -33,8 +33,11 @@ from ..ros.schedule import Schedule
 from . import config as config_module
 from . import controllers as ctl
 from . import description, hardware
+from .manager import ControllerManager
 
 CLOCK_HZ = 100.0
+TF_PUBLISH_FREQUENCY = 20.0   # robot_state_publisher's publish_frequency default
+TF_INTERVAL_NS = int(1000.0 / TF_PUBLISH_FREQUENCY) * 1_000_000
 
 
 class Simulation:
@@ -85,8 +88,16 @@ class Simulation:
         # controllers' publishers keep them (sw2sim.ros.schedule)
         self.updates = Schedule(self.period)
         self.urdf_joints = description.joints(package.robot)
-        self.controllers: dict[str, ctl.Controller] = {}
-        self.commands: dict[str, dict] = {}
+        self.controllers: dict[str, ctl.Controller] = {}   # the configured ones, by name
+        # what each joint's command interfaces hold (gz_system starts them at 0, or at the
+        # state interface's initial_value), and its command components (hardware.JointCommand)
+        self.commands: dict[str, dict] = {
+            n: {i: j.initial.get(i, 0.0) for i in j.command} for n, j in setup.joints.items()}
+        self.gz = {n: hardware.JointCommand(bool(j.command), setup.hold_joints)
+                   for n, j in setup.joints.items()}
+        self.manager = ControllerManager(self)
+        self.extra_nodes = []                 # nodes besides `node` for the executor to spin
+        self.tf_published: dict[str, int] = {}   # joint -> stamp (ns) of its last /tf
         self.publishers = {}
         self.publishing: dict[str, Schedule] = {}
         self.next_clock = self.next_clock_wall = 0.0
@@ -120,23 +131,16 @@ class Simulation:
         fixed = [description.stamped(j, 0.0, stamp) for j in self.urdf_joints
                  if j.kind == "fixed"]
         self.tf_static.publish(TFMessage(transforms=fixed))
-        state = self.state()
-        for name, kind in self.setup.controllers.items():
-            params = self.setup.params(name)
-            try:
-                controller = ctl.create(name, kind, params, self.setup.joints)
-            except ctl.ConfigError as exc:
-                self.say(f"sw2sim ros2: controller {exc}; not started")
-                continue
-            controller.activate(state)
-            self.controllers[name] = controller
-            rate = float(params.get("update_rate") or self.setup.update_rate)
-            controller.publish_period = 1.0 / min(rate, CLOCK_HZ)
-            self.publishing[name] = Schedule(controller.publish_period)
-            if kind == ctl.JSB:
-                self.publishers[name] = node.create_publisher(JointState, "/joint_states", 10)
-            else:
-                self._controller_topics(controller)
+        for problem in self.setup.problems:
+            self.say(f"sw2sim ros2: {problem}")
+        # the controller manager's node and services (sw2sim.ros2.manager), then every
+        # controller of the YAML loaded, configured and activated as the spawner would
+        self.manager.serve(node.context)
+        self.extra_nodes.append(self.manager.node)
+        with self.lock:
+            _, failures = self.manager.start(self.state())
+        for failure in failures:
+            self.say(f"sw2sim ros2: controller {failure}; not started")
         self.say(f"sw2sim ros2: {self.setup.name}: {len(self.joint_names)} joint(s) under "
                  f"ros2_control; controllers: {', '.join(self.controllers) or 'none'}")
 
@@ -175,10 +179,63 @@ class Simulation:
                                      best_effort)
             self.publishers[c.name] = node.create_publisher(
                 MultiDOFStateStamped, f"{base}/controller_state", 10)
+            from std_srvs.srv import SetBool
+
+            def feedforward(request, response, c=c):
+                c.set_feedforward(request.data)
+                self._report(c)
+                response.success = True
+                return response
+            node.create_service(SetBool, f"{base}/set_feedforward_control", feedforward)
 
     def _report(self, c) -> None:
         while getattr(c, "errors", None):
             self.node.get_logger().error(f"{c.name}: {c.errors.pop(0)}")
+        while getattr(c, "warnings", None):
+            self.node.get_logger().warning(f"{c.name}: {c.warnings.pop(0)}")
+
+    # -- the controller manager's hooks (sw2sim.ros2.manager; the caller holds the lock) --
+    def _entities(self) -> list:
+        node = self.node
+        return [*node.publishers, *node.subscriptions, *node.services, *node.clients,
+                *node.timers, *node.waitables]
+
+    def configured(self, c: ctl.Controller) -> list:
+        """A controller configured: its topics and services made; the ROS entities that
+        were made for it."""
+        from sensor_msgs.msg import JointState
+        before = {id(e) for e in self._entities()}
+        rate = float(c.params.get("update_rate") or self.setup.update_rate)
+        c.publish_period = 1.0 / min(rate, CLOCK_HZ)
+        self.publishing[c.name] = Schedule(c.publish_period)
+        if c.kind == ctl.JSB:
+            self.publishers[c.name] = self.node.create_publisher(JointState, "/joint_states", 10)
+        else:
+            self._controller_topics(c)
+        self.controllers[c.name] = c
+        return [e for e in self._entities() if id(e) not in before]
+
+    def cleaned_up(self, c: ctl.Controller, entities: list) -> None:
+        """A controller cleaned up: what configure made for it destroyed."""
+        node = self.node
+        for entity in entities:
+            for kind, destroy in (("Publisher", node.destroy_publisher),
+                                  ("Subscription", node.destroy_subscription),
+                                  ("Service", node.destroy_service),
+                                  ("Client", node.destroy_client), ("Timer", node.destroy_timer)):
+                if type(entity).__name__ == kind:
+                    destroy(entity)
+                    break
+            else:
+                if hasattr(entity, "destroy"):   # an action server
+                    entity.destroy()
+        for table in (self.publishers, self.publishing, self.controllers):
+            table.pop(c.name, None)
+
+    def write_commands(self, written: dict) -> None:
+        """Values a controller writes to its command interfaces (as it deactivates)."""
+        for joint, values in written.items():
+            self.commands.setdefault(joint, {}).update(values)
 
     @staticmethod
     def _stamp(t: float):
@@ -193,18 +250,20 @@ class Simulation:
             now = float(d.time)
             if self.updates.due(now):
                 state = self.state()
-                commands: dict[str, dict] = {}
+                self.manager.apply(state)    # a switch the services asked for
                 for c in self.controllers.values():
-                    for joint, values in c.update(now, self.period, state).items():
-                        commands.setdefault(joint, {}).update(values)
-                self.commands = commands
+                    if c.active:   # the command interfaces keep what is not written again
+                        self.write_commands(c.update(now, self.period, state))
                 self.updates.advance(now)
             gain = self.setup.position_proportional_gain * self.setup.update_rate
             for name, (qa, va, a, limit, inertia) in self.places.items():
                 q, v = float(d.qpos[qa]), float(d.qvel[va])
                 joint = self.setup.joints[name]
+                # what gz_system writes and gz-sim's Physics applies in this step
+                command = hardware.finite_command(self.gz[name].step(
+                    self.manager.joint_modes.get(name, ()), self.commands.get(name, {})))
                 law = hardware.joint_law(
-                    self.commands.get(name, {}), q, v, effort_limit=limit, inertia=inertia,
+                    command, q, v, effort_limit=limit, inertia=inertia,
                     dt=self.dt, position_gain=gain, enforce=self.setup.enforce_command_limits,
                     interface_limits=joint.limits, allowed=hardware.servo_range(
                         self.bounds.get(name, hardware.Bounds()), q, self.dt)
@@ -224,12 +283,16 @@ class Simulation:
             self.clock.publish(Clock(clock=self._stamp(now)))
             self.next_clock = now + period
             self.next_clock_wall = max(self.next_clock_wall, wall - period / 2) + period
-        for name, c in self.controllers.items():
-            schedule = self.publishing[name]
+        with self.lock:   # (the controller manager's services change the lists)
+            running = [(n, c, self.publishing[n]) for n, c in self.controllers.items()
+                       if c.active]
+        for name, c, schedule in running:   # an inactive controller publishes nothing
             if not schedule.due(now):
                 continue
             schedule.advance(now)
             with self.lock:
+                if name not in self.publishers:
+                    continue
                 state = self.state()
                 stamp = self._stamp(now)
                 if isinstance(c, ctl.JointStateBroadcaster):
@@ -264,7 +327,17 @@ class Simulation:
         return message
 
     def _publish_tf(self, joint_state) -> None:
+        """robot_state_publisher's callbackJointState (3.3.3): the moving joints'
+        transforms, stamped with the joint state's stamp, when that stamp is at least
+        1/publish_frequency (20 Hz by default: 50 ms, whole milliseconds) past the stamp of
+        the last /tf of the least recently published of its joints (0 at first)."""
         from tf2_msgs.msg import TFMessage
+        stamp = joint_state.header.stamp.sec * 1_000_000_000 + joint_state.header.stamp.nanosec
+        last = min((self.tf_published.get(n, 0) for n in joint_state.name), default=0)
+        if stamp < last + TF_INTERVAL_NS:
+            return
+        for n in joint_state.name:
+            self.tf_published[n] = stamp
         positions = dict(zip(joint_state.name, joint_state.position))
         transforms = [description.stamped(j, positions[j.name], joint_state.header.stamp)
                       for j in self.urdf_joints

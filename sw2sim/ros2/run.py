@@ -134,7 +134,7 @@ def _serve(package, setup, domain, duration, realtime, view, stop, parent, say) 
     from .node import Simulation
     context = rclpy.Context()
     rclpy.init(context=context, signal_handler_options=SignalHandlerOptions.NO)
-    node = executor = spinner = window = None
+    node = executor = spinner = window = sim = None
     try:
         node = rclpy.create_node("sw2sim", context=context)
         outside = discovery.beyond_loopback()
@@ -157,7 +157,8 @@ def _serve(package, setup, domain, duration, realtime, view, stop, parent, say) 
             "ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST")
         sim.start()
         executor = SingleThreadedExecutor(context=context)
-        executor.add_node(node)
+        for each in (node, *sim.extra_nodes):   # the controller manager's node too
+            executor.add_node(each)
         spinner = threading.Thread(target=_spin, args=(executor, stop), daemon=True)
         spinner.start()
         if view:
@@ -191,6 +192,8 @@ def _serve(package, setup, domain, duration, realtime, view, stop, parent, say) 
             executor.shutdown(timeout_sec=1.0)
         if spinner is not None:
             spinner.join(timeout=2.0)
+        for each in getattr(sim, "extra_nodes", []):
+            each.destroy_node()
         if node is not None:
             node.destroy_node()
         if context.ok():

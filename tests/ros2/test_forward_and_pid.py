@@ -56,6 +56,14 @@ def test_velocity_commands_and_a_pid_reference(ros2, ported_example_3, tmp_path)
     state = out["controller_state"]["middle_pid"][0]
     assert state["name"] == "middle_arm_joint" and state["reference"] == 0.4
     assert abs(state["error"]) < 0.01
+    # /tf as robot_state_publisher sends it: the transforms of a joint state at least
+    # 50 ms (its publish_frequency of 20 Hz) past the last ones sent, so with joint states
+    # every 20 ms, every third: 60 ms apart (a missed one makes a gap of 120 ms; a loaded
+    # recorder may hear only the first few)
+    tf = sorted({m[0][2] for m in out["tf"] if m})
+    gaps = np.diff(tf)
+    assert len(tf) >= 5 and np.all(gaps > 0.05 - 1e-6), gaps[:10]
+    assert np.median(gaps) == pytest.approx(0.06, abs=1e-6), gaps[:10]
 
 
 def test_a_rate_that_is_no_multiple_of_the_step_keeps_its_grid(ros2, ported_example_3, tmp_path):
