@@ -7,12 +7,14 @@ UDPv4 transport, with no interface allow-list, to whatever a profile gives (Jazz
 rmw_fastrtps, participant.cpp, the LOCALHOST case,
 https://github.com/ros2/rmw_fastrtps/blob/8.4.1/rmw_fastrtps_shared_cpp/src/participant.cpp#L185-L207;
 8.4.2 and 8.4.3 did not change it). Fast DDS 2.14 binds such a transport's receiving
-sockets to 0.0.0.0 and opens a sending socket on 0.0.0.0 and one on each network
-interface's address
+sockets to 0.0.0.0, and its sending sockets to 0.0.0.0 and to each network interface's
+address (those for multicast)
 (https://github.com/eProsima/Fast-DDS/blob/v2.14.5/src/cpp/rtps/transport/UDPv4Transport.cpp#L549-L565,
 https://github.com/eProsima/Fast-DDS/blob/v2.14.5/src/cpp/rtps/transport/UDPTransportInterface.cpp#L340-L391).
-Seen in /proc on an rclpy node under LOCALHOST here: 0.0.0.0 and 192.0.2.2 sockets beside
-the 127.0.0.1 ones, also with this module's profile loaded.
+Seen in /proc and with strace here: an rclpy node under LOCALHOST alone receives on
+0.0.0.0; with this module's profile loaded as well, its 127.0.0.1 sockets take the
+receiving ports first (the 0.0.0.0 binds fail), but the sending sockets on 0.0.0.0 and on
+the network address stay. No datagram went anywhere but 127.0.0.1 in either case.
 
 So the processes the project starts use the range SYSTEM_DEFAULT, under which
 rmw_fastrtps leaves the transports and locators to the profile (the same file, L212-L214),

@@ -9,10 +9,19 @@ Fast DDS 2.14 (ROS 2 Jazzy) keeps these in /dev/shm while a participant runs:
   (`sem.fastrtps_port<N>_mutex`).
 
 A participant that ends removes them. A process killed with SIGKILL cannot, and then
-about 0.6 MB stays per participant. Fast DDS's own rule for such leftovers (its
-SharedMemGlobal::Port::is_zombie, the segment watchdog of SharedMemManager, and the
-`fastdds shm clean` tool) is the one used here: a file is dead when its lock file exists
-and nobody holds the lock. This module applies it more carefully than the tool does:
+about 0.6 MB stays per participant. Fast DDS's own rule for such leftovers is the one used
+here: a file is dead when its lock file exists and nobody holds the lock. So decide
+SharedMemGlobal::Port::is_zombie
+(https://github.com/eProsima/Fast-DDS/blob/v2.14.5/src/cpp/rtps/transport/shared_mem/SharedMemGlobal.hpp#L936-L979),
+the watchdog of the segments a process has opened
+(https://github.com/eProsima/Fast-DDS/blob/v2.14.5/src/cpp/rtps/transport/shared_mem/SharedMemManager.hpp#L1249-L1262)
+and the `fastdds shm clean` tool
+(https://github.com/eProsima/Fast-DDS/blob/v2.14.5/tools/fastdds/shm/clean.py#L86-L116).
+A segment's lock is taken before the segment is made
+(https://github.com/eProsima/Fast-DDS/blob/v2.14.5/src/cpp/rtps/transport/shared_mem/SharedMemManager.hpp#L530-L558),
+and a lock whose file went while it was being taken is taken again on a new file
+(https://github.com/eProsima/Fast-DDS/blob/v2.14.5/src/cpp/utils/shared_memory/RobustExclusiveLock.hpp#L211-L253).
+This module applies the rule more carefully than the tool does:
 
 - a segment's lock is held while the segment and the lock file are removed, so that a
   process creating a segment of that name fails to lock it and picks another name (as
