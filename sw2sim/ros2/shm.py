@@ -54,8 +54,8 @@ DOMAIN = "fastrtps"   # SharedMemTransport's domain name in Fast DDS 2.x
 SEGMENT = re.compile(rf"{DOMAIN}_([0-9a-f]{{16}})(?:_el|_sl)?$")
 PORT = re.compile(rf"(?:sem\.)?{DOMAIN}_port(\d+)(?:_el|_sl|_mutex)?$")
 WAIT_GONE = 10.0   # s the watcher waits for the ended process to release its files
-# s: a port's semaphore alone is a leftover only once it is older than the moment between
-# its creation and the port's, in Fast DDS's open_port_internal
+# s: a port's semaphore without the port is a leftover only when older than this (Fast
+# DDS's open_port_internal makes the semaphore a moment before the port)
 LONE_SEMAPHORE_AGE = 5.0
 
 
