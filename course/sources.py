@@ -48,6 +48,7 @@ REPOSITORIES = {"solidworks_urdf_exporter": "ros/solidworks_urdf_exporter",
                 "rmw": "ros2/rmw",
                 "sdformat": "gazebosim/sdformat",
                 "gz-physics": "gazebosim/gz-physics",
+                "gz-sim": "gazebosim/gz-sim",
                 "dart": "dartsim/dart"}
 # A link to lines of a file at a tag or branch: blob/<ref>/<file>#L<a>[-L<b>].
 URL = re.compile(r"^https://github\.com/(?P<repo>[\w.-]+/[\w.-]+)/blob/(?P<ref>[\w.-]+)/"
