@@ -13,8 +13,10 @@
   With the controller manager's `enforce_command_limits: true` (false by default in
   Jazzy), ros2_control's saturation limiter clamps it first to the smaller of the URDF
   effort and the ros2_control interface's `min`/`max` params.
-- A joint with command interfaces that no active controller claims is held: a zero
-  velocity command (gz_ros2_control's `hold_joints`, true by default).
+- A joint with command interfaces that no active controller claims gets what
+  gz_system's `hold_joints` (true by default) and Gazebo Sim's kept command components
+  give it (`JointCommand`, below): a velocity of 0, or, once an effort controller has
+  driven it, no force at all.
 
 A joint's commands are taken in gz_system's order: velocity, then position, then effort.
 Every law is affine in the joint's position q and velocity v, `c0 + cq q + cv v`, so that
@@ -245,10 +247,10 @@ def constrain(model, data, joints, positions) -> int:
 # position (turned into a velocity), else effort, else, for a joint with command
 # interfaces and `hold_joints` (true by default), a velocity of 0. Each writes a command
 # component on the joint, created the first time (a velocity or effort component is created
-# holding 0; the value follows from the next step on). Gazebo Sim's Physics (gz-sim 8,
-# Physics.cc) then applies the force component if the joint has one, else the velocity
-# component, and at the end of the step sets every command component to 0 without removing
-# it. So a joint that was ever driven by effort gets a force from then on, 0 when nothing
+# holding 0; the value follows from the next step on). Gazebo Sim's Physics (gz-sim8
+# 8.10.0, what Jazzy's gz_sim_vendor builds; Physics.cc) then applies the force component
+# if the joint has one, else the velocity component, and at the end of the step sets every
+# command component to 0 without removing it. So a joint that was ever driven by effort gets a force from then on, 0 when nothing
 # writes one (its velocity components are ignored), and is free once its controller is
 # deactivated, whatever `hold_joints` says; a joint driven by velocity or position keeps a
 # velocity command of 0 once nothing writes one, `hold_joints` or not; `hold_joints` alone

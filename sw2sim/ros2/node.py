@@ -8,16 +8,22 @@ It publishes, with the real ROS 2 types:
   otherwise spend its time reading it);
 - `/robot_description` (std_msgs/String, transient local, depth 1) and `/tf_static`
   (tf2_msgs/TFMessage, transient local) once, as robot_state_publisher does; `/tf` with
-  the moving joints' transforms for every joint state published;
-- `/joint_states` (sensor_msgs/JointState) from each joint_state_broadcaster at its
-  `update_rate` (the controller manager's by default), and each controller's topics
-  (sw2sim.ros2.controllers), its `~/controller_state` at the same rate.
+  the moving joints' transforms of a joint state whose stamp is at least 50 ms past the
+  last ones sent (robot_state_publisher's rule at its default 20 Hz, `_publish_tf`);
+- `/joint_states` (sensor_msgs/JointState) from each active joint_state_broadcaster at
+  its `update_rate` (the controller manager's by default), and each active controller's
+  topics (sw2sim.ros2.controllers), its `~/controller_state` at the same rate.
 No topic is published more often than CLOCK_HZ times per simulated second (the real
-controllers publish their state at every update, a thousand times a second).
+controllers publish their state at every update, a thousand times a second). The
+controller manager's node and services are sw2sim.ros2.manager's.
 
 The model is `sw2sim.load_package`'s, stepped at its own time step; the controller
-manager updates every `1 / update_rate` of simulated time (at most once per step, as
-gz_ros2_control does), and each joint's force follows sw2sim.ros2.hardware.
+manager updates the active controllers every `1 / update_rate` of simulated time (at
+most once per step, as gz_ros2_control does), after any switch a service asked for. The
+command interfaces keep the last value written (gz_system starts them at 0, or at the
+state interface's `initial_value`), and at every step each joint gets what gz_system and
+Gazebo Sim make of the claimed ones (sw2sim.ros2.hardware.JointCommand, then the force
+laws there).
 """
 
 from __future__ import annotations
