@@ -4,7 +4,7 @@ the controller manager's services the way Jazzy's ros2controlcli verbs and the s
 built as there, the call through call_async and spin_until_future_complete), on Practice
 3's ported package, and prints one JSON object of what it saw:
 
-    python control_client.py
+    python control_client.py PARAMS
 
 1. `ros2 control list_controllers`, `list_controller_types`, `list_hardware_interfaces`,
    `list_hardware_components`;
@@ -13,8 +13,10 @@ built as there, the call through call_async and spin_until_future_complete), on 
    watched for 2 s of simulated time;
 3. `--activate end_arm_controller --activate-asap` (best effort), a trajectory to -0.3 rad;
 4. refusals: an unknown name, an active controller activated again (strict and best effort);
-5. the spawner's sequence after an unload: `load_controller`, `configure_controller`,
-   `switch_controller`.
+5. the spawner's sequence after an unload, with `--param-file PARAMS` (the file given as
+   the one argument): `<name>.params_file` and `<name>.type` set on the controller
+   manager's node (set_controller_parameters_from_param_files), `load_controller`,
+   `configure_controller`, `switch_controller`.
 """
 
 import json
@@ -27,6 +29,9 @@ from controller_manager_msgs.srv import (ConfigureController, ListControllers,
                                          ListControllerTypes, ListHardwareComponents,
                                          ListHardwareInterfaces, LoadController,
                                          SwitchController, UnloadController)
+from rcl_interfaces.msg import Parameter
+from rcl_interfaces.srv import SetParameters
+from rclpy.parameter import get_parameter_value
 from sensor_msgs.msg import JointState
 from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
 
@@ -81,6 +86,13 @@ class Client:
         request.timeout = Duration(sec=int(timeout), nanosec=int(timeout % 1 * 1e9))
         reply = self.call(SwitchController, "switch_controller", request)
         return {"ok": reply.ok, "message": reply.message}
+
+    def set_parameter(self, name, value):
+        """controller_manager_services.set_controller_parameters: the value as a string
+        read back as YAML, through the node's set_parameters service."""
+        request = SetParameters.Request(parameters=[Parameter(
+            name=name, value=get_parameter_value(string_value=str(value)))])
+        return self.call(SetParameters, "set_parameters", request).results[0].successful
 
     def named(self, kind, service, name):
         request = kind.Request()
@@ -165,6 +177,10 @@ def main() -> int:
     out["after_unload"] = [x["name"] for x in c.list_controllers()]
     out["configure_unloaded"] = c.named(ConfigureController, "configure_controller",
                                         "end_arm_controller")
+    out["parameters_set"] = [
+        c.set_parameter("end_arm_controller.params_file", [sys.argv[1]]),
+        c.set_parameter("end_arm_controller.type",
+                        "joint_trajectory_controller/JointTrajectoryController")]
     out["load"] = c.named(LoadController, "load_controller", "end_arm_controller")
     out["loaded"] = [x for x in c.list_controllers() if x["name"] == "end_arm_controller"]
     out["activate_unconfigured"] = c.switch([], ["end_arm_controller"], strict, False, 5.0)

@@ -19,6 +19,18 @@ from ros2_environment import PYTHON, missing
 
 JTC = "joint_trajectory_controller/JointTrajectoryController"
 JSB = "joint_state_broadcaster/JointStateBroadcaster"
+# what a spawner's --param-file gives the end arm's controller when it is loaded again
+PARAMS = f"""\
+end_arm_controller:
+  ros__parameters:
+    type: {JTC}
+    update_rate: 50
+    joints: [end_arm_joint]
+    command_interfaces: [effort]
+    state_interfaces: [position, velocity]
+    gains:
+      end_arm_joint: {{p: 40.0, i: 4.0, d: 2.0, i_clamp_max: 0.2, i_clamp_min: -0.2}}
+"""
 
 
 @pytest.fixture(scope="module")
@@ -26,12 +38,15 @@ def seen(tmp_path_factory, ported_example_3):
     """What the client saw, from one run of the stand-in (its wall time is printed)."""
     if missing():
         pytest.skip(missing())
-    world = Ros2(tmp_path_factory.mktemp("controller_manager") / "ros_home")
+    folder = tmp_path_factory.mktemp("controller_manager")
+    (folder / "params.yaml").write_text(PARAMS, encoding="utf-8")
+    world = Ros2(folder / "ros_home")
     began = time.monotonic()
     try:
         world.start(str(PYTHON), "-m", "sw2sim", "ros2", str(ported_example_3), "--realtime",
                     "0", "--duration", "60", name="standin")
-        done = subprocess.run([str(PYTHON), str(world.here / "control_client.py")],
+        done = subprocess.run([str(PYTHON), str(world.here / "control_client.py"),
+                               str(folder / "params.yaml")],
                               env=world.env, capture_output=True, text=True, timeout=90,
                               start_new_session=True)
         assert done.returncode == 0, f"{done.stderr[-3000:]}\n{world.log('standin')[-3000:]}"
@@ -105,13 +120,16 @@ def test_switches_are_refused_as_upstream_refuses_them(seen):
 
 
 def test_the_spawners_sequence_after_an_unload(seen):
+    """With --param-file: its parameters (an update_rate of 50) are the controller's."""
     assert seen["unload_active"] is False    # not while active
     assert seen["unload"] is True
     assert seen["after_unload"] == ["joint_state_broadcaster", "middle_arm_controller"]
     assert seen["configure_unloaded"] is False
+    assert seen["parameters_set"] == [True, True]
     assert seen["load"] is True
     loaded = seen["loaded"][0]
     assert (loaded["state"], loaded["required_command"]) == ("unconfigured", [])
+    assert loaded["update_rate"] == 50
     assert seen["activate_unconfigured"]["ok"] is False
     assert "is in 'unconfigured' state" in seen["activate_unconfigured"]["message"]
     assert seen["configure"] is True and seen["configured"] == ["inactive"]
