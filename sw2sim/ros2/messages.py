@@ -136,8 +136,10 @@ DEFINITIONS: dict[str, tuple[tuple[str, ...], dict[str, str]]] = {
     }),
 }
 
-# controller_manager_msgs (ros2_control 4.46.0, the jazzy branch): the controller manager's
-# services (sw2sim.ros2.manager), which `ros2 control ...` and the spawner call.
+# controller_manager_msgs (ros2_control 4.46.0, the jazzy branch): the services the
+# controller manager serves here (sw2sim.ros2.manager), which `ros2 control ...` and the
+# spawner call, and the messages they hold (not the ~/activity topic's messages nor
+# set_hardware_component_state, which it does not offer: every interface costs build time).
 _HARDWARE_INTERFACE = "string name\nstring data_type\nbool is_available\nbool is_claimed\n"
 DEFINITIONS["controller_manager_msgs"] = (("builtin_interfaces", "lifecycle_msgs", "std_msgs"), {
     "msg/ChainConnection.msg": "string name\nstring[] reference_interfaces\n",
@@ -168,12 +170,6 @@ DEFINITIONS["controller_manager_msgs"] = (("builtin_interfaces", "lifecycle_msgs
         "HardwareInterface[] command_interfaces\n"
         "HardwareInterface[] state_interfaces\n"
     ),
-    "msg/NamedLifecycleState.msg": "string name\nlifecycle_msgs/State state\n",
-    "msg/ControllerManagerActivity.msg": (
-        "std_msgs/Header header\n"
-        "NamedLifecycleState[] controllers\n"
-        "NamedLifecycleState[] hardware_components\n"
-    ),
     "srv/CleanupController.srv": "string name\n---\nbool ok\n",
     "srv/ConfigureController.srv": "string name\n---\nbool ok\n",
     "srv/ListControllerTypes.srv": "---\nstring[] types\nstring[] base_classes\n",
@@ -183,8 +179,6 @@ DEFINITIONS["controller_manager_msgs"] = (("builtin_interfaces", "lifecycle_msgs
         "---\nHardwareInterface[] command_interfaces\nHardwareInterface[] state_interfaces\n"),
     "srv/LoadController.srv": "string name\n---\nbool ok\n",
     "srv/ReloadControllerLibraries.srv": "bool force_kill\n---\nbool ok\n",
-    "srv/SetHardwareComponentState.srv": (
-        "string name\nlifecycle_msgs/State target_state\n---\nbool ok\nlifecycle_msgs/State state\n"),
     "srv/SwitchController.srv": (
         "string[] activate_controllers\n"
         "string[] deactivate_controllers\n"

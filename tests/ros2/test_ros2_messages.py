@@ -34,16 +34,12 @@ UPSTREAM = {
         "RIHS01_738ebcb7a2d7cfa42f9f1001cc99ce3a4383d1cfe508015d9be8485e4b1c66f6",
     "controller_manager_msgs/msg/ChainConnection":
         "RIHS01_2daecd1da4b171f48b291c79747657a651eb1ab8821b68e38b1c88c736bba91c",
-    "controller_manager_msgs/msg/ControllerManagerActivity":
-        "RIHS01_35b7de5d611b6780e89732de325f2f765eacdb8a7adfe5821a27af4a03a7c244",
     "controller_manager_msgs/msg/ControllerState":
         "RIHS01_9a8780ab9814b6032978a07c6c7033cf1a7894ac8d948a6fb72afea07b04cc83",
     "controller_manager_msgs/msg/HardwareComponentState":
         "RIHS01_8723f76b60e3ea54920065e3e777d93c68b76fc12839ad6a6ca4e0a6439b384c",
     "controller_manager_msgs/msg/HardwareInterface":
         "RIHS01_b4c556991db81ca56a49338b5e8f0675a6707faee54fba161d2bbd4d963d418a",
-    "controller_manager_msgs/msg/NamedLifecycleState":
-        "RIHS01_b7947b6f8df8f7e93d1cb8d115842fb0eeddfa6fb5c7b86cc0f3cafd55be4c1f",
     "controller_manager_msgs/srv/CleanupController":
         "RIHS01_0e5e0da84cf97150abbb3a4e2249c67e6f43dba01ed9b7228b4deaab8838ec4b",
     "controller_manager_msgs/srv/ConfigureController":
@@ -60,8 +56,6 @@ UPSTREAM = {
         "RIHS01_e37f7596c50c88cf8cb7a10cd376ff7579850cc63b5e787e9c8f11981f9ab4d2",
     "controller_manager_msgs/srv/ReloadControllerLibraries":
         "RIHS01_485cd0040f8a343a9596155b967363e1bc715f034bbb111f795c73d9d8056a9b",
-    "controller_manager_msgs/srv/SetHardwareComponentState":
-        "RIHS01_940b15846ed3e1fb561ab45edf77a992b811fd59c574f45d5205a84a0deb2f65",
     "controller_manager_msgs/srv/SwitchController":
         "RIHS01_d4ad10aa5da7808bc522d55d4123d8ef79de73d049d165639d7663ac37cc9895",
     "controller_manager_msgs/srv/UnloadController":
