@@ -32,7 +32,7 @@ ROS_MODULES = {"rospy", "std_msgs", "sensor_msgs", "geometry_msgs", "gazebo_msgs
                "rosgraph_msgs", "controller_manager_msgs"}
 # ROS 2 comes from the `ros2` extra (requirements-ros2.txt), imported only where it is used.
 ROS2_MODULES = {"rclpy", "builtin_interfaces", "rosidl_runtime_py", "catkin_pkg",
-                "ament_index_python", "lifecycle_msgs"}
+                "ament_index_python", "lifecycle_msgs", "rcl_interfaces"}
 
 
 def normalise(name: str) -> str:
