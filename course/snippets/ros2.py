@@ -8,7 +8,10 @@ bash in the session's folder, which holds a copy of the example packages the pag
 - `sw2sim ros2 PACKAGE` keeps running, as in a terminal of its own; the runner adds
   `--realtime` (simulated seconds per wall second) unless the page gives it;
 - `python PACKAGE/scripts/NODE.py ...` starts a node of the page and goes on: the node
-  keeps running, or ends by itself with status 0 (a one-shot command);
+  keeps running, or ends by itself with status 0 (a one-shot command). Followed by
+  another command of its block, it runs to its end first (status 0, no error printed),
+  as the terminal it is typed in gives the prompt back only then: a client that sends
+  one goal and prints its result, before the next node starts;
 - every other command (`sw2sim port`, `cd`, ...) must end with status 0; what it changes
   of the shell (`cd`, `export`) holds for the next.
 
@@ -124,8 +127,9 @@ class Session:
         self.prepare()
         for block in self.page.ros2_blocks:
             if block.language == "bash":
-                for command in commands(block):
-                    self.command(command)
+                found = commands(block)
+                for k, command in enumerate(found):
+                    self.command(command, last=k == len(found) - 1)
             else:
                 self.write_node(block)
 
@@ -143,7 +147,7 @@ class Session:
         path.chmod(0o755)
         self.written[f"{block.ros2}/{block.data_file}"] = block
 
-    def command(self, command: Command) -> None:
+    def command(self, command: Command, last: bool = True) -> None:
         words = command.words
         if not words:
             return
@@ -154,7 +158,14 @@ class Session:
             self.wait_until_up(self.start(command, text))
         elif words[0] in ("python", "python3") and len(words) > 1 and words[1].endswith(".py"):
             self.ensure_node(command, words[1])
-            self.start(command, command.text)
+            if last:
+                self.start(command, command.text)
+            else:   # the next command of the block is typed once this one has ended
+                output = self.finish(command)
+                if m := FAULTS.search(output):
+                    raise Ros2BlockError(command.location, f"`{command.text}` printed a fault:"
+                                                           f"\n{output[max(0, m.start() - 600):]}"
+                                                           [:2500])
         else:
             self.finish(command)
         self.ran.append(f"{command.location}: {command.text}")
@@ -190,8 +201,9 @@ class Session:
         self.started.append(started)
         return started
 
-    def finish(self, command: Command) -> None:
-        """Run a command to its end, and keep what it changed of the shell."""
+    def finish(self, command: Command) -> str:
+        """Run a command to its end, and keep what it changed of the shell; what it
+        printed."""
         try:
             ended = shell.finish(command.text, self.cwd, self.env, self.folder / "shell",
                                  COMMAND_TIMEOUT)
@@ -205,6 +217,7 @@ class Session:
         # what the command exported holds, but ROS 2 stays on 127.0.0.1 in the session's
         # domain (the pages' `export ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST` included)
         self.cwd, self.env = ended.cwd, environment(self.domain, ended.env)
+        return ended.done.stdout + ended.done.stderr
 
     # -- the end -----------------------------------------------------------------------
     def check(self) -> None:

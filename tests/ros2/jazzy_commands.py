@@ -4,7 +4,10 @@
 - `ros2 launch PACKAGE FILE`: the launch file `sw2sim port` wrote into that package;
 - `ros2 run PACKAGE PROGRAM`: a node file the pages write into a package's `scripts/`;
 - `ros2 topic pub|echo|hz|info TOPIC [TYPE] [MESSAGE]`: a topic the page's run had, with
-  that type; the message's fields and an `--field` path exist in the type.
+  that type; the message's fields and an `--field` path exist in the type;
+- `ros2 action send_goal [--feedback] ACTION TYPE GOAL`: an action the page's run served
+  (its hidden `ACTION/_action/feedback` topic, of that action's type), and the goal's
+  fields exist in the action's Goal.
 """
 
 from __future__ import annotations
@@ -40,9 +43,13 @@ while todo:
     name = todo.pop()
     if name in table:
         continue
-    package, *_, message = name.split("/")
+    package, *middle, message = name.split("/")
     try:
-        cls = getattr(importlib.import_module(package + ".msg"), message)
+        if middle == ["action"]:   # an action's Goal: pkg/action/Name_Goal
+            cls = getattr(importlib.import_module(package + ".action"),
+                          message.removesuffix("_Goal")).Goal
+        else:
+            cls = getattr(importlib.import_module(package + ".msg"), message)
     except (ImportError, AttributeError):
         table[name] = None
         continue
@@ -178,3 +185,40 @@ def topic_problems(command: Command, graph: dict[str, list[str]], tables: dict) 
         problem = path_problem(tables, type_name, field, where)
         problems += [problem] if problem else []
     return problems
+
+
+def action_line(command: Command) -> tuple[str | None, str | None, str | None]:
+    """A `ros2 action send_goal` line's (action, type, goal); all None for other lines."""
+    w = command.words
+    if w[1:3] != ["action", "send_goal"]:
+        return None, None, None
+    rest = [x for x in w[3:] if x not in ("--feedback", "-f")]
+    return tuple((rest + [None, None, None])[:3])
+
+
+def action_types(lines: list[Command]) -> set[str]:
+    """The Goal types (`pkg/action/Name_Goal`) the `ros2 action send_goal` lines name."""
+    return {f"{t}_Goal" for c in lines if (t := action_line(c)[1])}
+
+
+def action_problems(command: Command, graph: dict[str, list[str]], tables: dict) -> list[str]:
+    """What a `ros2 action send_goal` line names that the run did not serve: the action,
+    its type, the goal's fields. `tables`: field_tables() of action_types()."""
+    action, type_name, goal = action_line(command)
+    where = command.location
+    if action is None:
+        return []
+    if type_name is None:
+        return [f"{where}: `{command.text}` names no action type"]
+    feedback = graph.get(f"{action}/_action/feedback")
+    if feedback is None:
+        return [f"{where}: the run served no action {action}"]
+    if f"{type_name}_FeedbackMessage" not in feedback:
+        return [f"{where}: {action} is a {feedback}, not a {type_name}"]
+    if not tables.get(f"{type_name}_Goal"):
+        return [f"{where}: the action type {type_name} is not installed here"]
+    try:
+        data = yaml.safe_load(goal) if goal else {}
+    except yaml.YAMLError as exc:
+        return [f"{where}: the goal is not YAML: {exc}"]
+    return field_problems(tables, f"{type_name}_Goal", data, where)

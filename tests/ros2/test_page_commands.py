@@ -95,3 +95,35 @@ def test_a_wrong_topic_type_or_field_is_caught(tmp_path):
     assert "not std_msgs/msg/Float64" in found["bad"][1]
     assert "/arm_controller/state is not a topic" in found["bad"][2]
     assert "--field error.position" in found["bad"][3]
+
+
+def test_a_wrong_action_type_or_goal_field_is_caught(tmp_path):
+    from jazzy_commands import action_problems, action_types, field_tables
+    from ros2_environment import missing
+    if reason := missing():
+        pytest.skip(reason)
+    graph = {"/arm_controller/follow_joint_trajectory/_action/feedback":
+             ["control_msgs/action/FollowJointTrajectory_FeedbackMessage"]}
+    send = "ros2 action send_goal --feedback"
+    good = (f'{send} /arm_controller/follow_joint_trajectory control_msgs/action/'
+            'FollowJointTrajectory "{trajectory: {joint_names: [a], points: [{positions: [0.5], '
+            'time_from_start: {sec: 2}}]}}"\n')
+    bad = (f'{send} /arm/follow_joint_trajectory control_msgs/action/FollowJointTrajectory '
+           '"{trajectory: {joint_names: [a]}}"\n'
+           f'{send} /arm_controller/follow_joint_trajectory control_msgs/action/GripperCommand '
+           '"{command: {position: 0.1}}"\n'
+           f'{send} /arm_controller/follow_joint_trajectory control_msgs/action/'
+           'FollowJointTrajectory "{trajectory: {points: [{position: [0.5]}]}}"\n')
+    found = {}
+    for name, text in (("good", good), ("bad", bad)):
+        page = tmp_path / f"{name}.md"
+        page.write_text(f"---\ntitle: t\n---\n\n```bash\n{text}```\n"
+                        '{: data-ros2-needs="ROS 2 Jazzy"}\n', encoding="utf-8")
+        lines = jazzy_commands(parse_page(page, tmp_path))
+        tables = field_tables(action_types(lines))
+        found[name] = [p for c in lines for p in action_problems(c, graph, tables)]
+    assert found["good"] == []
+    assert len(found["bad"]) == 3, found["bad"]
+    assert "no action /arm/follow_joint_trajectory" in found["bad"][0]
+    assert "not a control_msgs/action/GripperCommand" in found["bad"][1]
+    assert "no field 'position'" in found["bad"][2]

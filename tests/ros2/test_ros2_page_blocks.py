@@ -20,7 +20,8 @@ import pytest
 
 from course.snippets import find_pages, parse_page
 from course.snippets.ros2 import Ros2BlockError, Session
-from jazzy_commands import field_tables, jazzy_commands, topic_problems, topic_types
+from jazzy_commands import (action_problems, action_types, field_tables, jazzy_commands,
+                            topic_problems, topic_types)
 from repository import ROOT
 from ros2_environment import PYTHON, missing
 
@@ -232,8 +233,9 @@ def test_page_ros2_blocks(path, tmp_path, record_property):
             claim(record)
             # What the page's lines for Jazzy name is what this run had.
             lines = jazzy_commands(page)
-            tables = field_tables(topic_types(lines, record["graph"]))
-            problems = [p for c in lines for p in topic_problems(c, record["graph"], tables)]
+            tables = field_tables(topic_types(lines, record["graph"]) | action_types(lines))
+            problems = [p for c in lines for check in (topic_problems, action_problems)
+                        for p in check(c, record["graph"], tables)]
             assert not problems, "\n".join(problems)
         except Ros2BlockError as error:
             fault = str(error)
