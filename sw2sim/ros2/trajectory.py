@@ -196,7 +196,8 @@ class Goal:
 
     def report(self, now: float, data) -> None:
         if self._feedback is not None and not self.ended and now >= self.next_feedback - 1e-9:
-            self.next_feedback = max(self.next_feedback + self.period, now)
+            following = self.next_feedback + self.period   # on the grid of the first
+            self.next_feedback = following if following > now else now + self.period
             self._feedback(data)
 
 

@@ -1,15 +1,19 @@
 """joint_trajectory_controller's FollowJointTrajectory action and its refusals, in one run
 of `sw2sim ros2` on Practice 3's ported package, seen by an independent rclpy process
 (trajectory_client.py): what it gets is what ros2_controllers 4.42.1's
-joint_trajectory_controller.cpp answers, and the stand-in's log says why."""
+joint_trajectory_controller.cpp answers, and the stand-in's log says why. And Practice 3's
+node, on a busy machine beside controllers found late (late_controllers.py), loses no
+set point."""
 
 from __future__ import annotations
 
 import json
 import re
 import subprocess
+import sys
 import time
 
+import numpy as np
 import pytest
 
 from conftest import HERE, Ros2, group_alive
@@ -46,8 +50,11 @@ def test_a_goal_is_reached_with_feedback_on_the_way(run):
     assert r["accepted"] and r["status"] == SUCCEEDED, r
     assert r["error_code"] == 0 and r["error_string"] == "Goal successfully reached!"
     assert abs(r["settled"] - 0.4) < 0.01, r["settled"]
-    # feedback at the action monitor's 20 Hz of simulated time over the 1 s trajectory
-    assert 15 <= r["feedback"] <= 30 and r["feedback_joints"] == ["middle_arm_joint"], r
+    # feedback at the action monitor's 20 Hz of simulated time (a loaded client keeps the
+    # last 10 of a burst: gaps of 50 ms or a few times that)
+    assert r["feedback"] >= 3 and r["feedback_joints"] == ["middle_arm_joint"], r
+    gaps = np.diff(r["stamps"]) / 0.05
+    assert np.allclose(gaps, np.round(gaps), atol=1e-3) and gaps.min() == pytest.approx(1), gaps
     desired = [d[0] for d in r["desired"]]
     assert desired == sorted(desired) and 0 < desired[len(desired) // 2] < 0.4, desired
     assert "middle_arm_controller: Goal reached, success!" in log
@@ -109,3 +116,35 @@ def test_bad_messages_on_the_topic_are_refused_with_the_field_named(run):
                  r"that ends in the past"):
         assert re.search(line, log), line
     assert abs(out["good_message"]["after"] + 0.3) < 0.01, out["good_message"]
+
+
+def test_the_pages_node_sends_its_set_points_only_to_controllers_it_has_found(ros2, tmp_path):
+    """Practice 3's node (random_setpoints.py, as the page shows it) beside a clock already
+    past 5 s and controllers found only 1.5 s later, on a machine kept busy: every set
+    point it says it sent reaches its controller (it once published before discovery had
+    found them, and that set point was lost)."""
+    from course.snippets.ros2 import node_blocks
+    from repository import ROOT
+    node = tmp_path / "random_setpoints.py"
+    node.write_text(node_blocks(ROOT)["example_3/scripts/random_setpoints.py"].code)
+    busy = [subprocess.Popen([sys.executable, "-c", "while True: pass"]) for _ in range(2)]
+    try:
+        started = ros2.start(str(PYTHON), str(node), "--ros-args", "-p", "use_sim_time:=true",
+                             name="random_setpoints")
+        done = subprocess.run([str(PYTHON), str(HERE / "late_controllers.py"), "1.5", "3"],
+                              env=ros2.env, capture_output=True, text=True, timeout=60,
+                              start_new_session=True)
+    finally:
+        for process in busy:
+            process.kill()
+            process.wait()
+    assert done.returncode == 0, done.stderr
+    received = json.loads(done.stdout)
+    ros2.stop_all()
+    assert started.poll() is not None
+    said = re.findall(r"(\w+_joint): new set point (-?[\d.]+) rad", ros2.log("random_setpoints"))
+    for controller, joint in (("middle_arm_controller", "middle_arm_joint"),
+                              ("end_arm_controller", "end_arm_joint")):
+        sent = [float(x) for j, x in said if j == joint]
+        got = [round(x, 4) for _, x in received[f"/{controller}/joint_trajectory"]]
+        assert got and got == sent, (joint, sent, got)

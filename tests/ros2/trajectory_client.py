@@ -106,6 +106,7 @@ def main() -> int:
     out["success"] = {"accepted": handle.accepted, **c.result(handle),
                       "feedback": len(feedback),
                       "feedback_joints": list(feedback[-1].joint_names) if feedback else [],
+                      "stamps": [stamp_seconds(f.header.stamp) for f in feedback],
                       "desired": [list(f.desired.positions) for f in feedback],
                       "actual": [list(f.actual.positions) for f in feedback]}
     c.wait(0.5)
