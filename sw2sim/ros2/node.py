@@ -157,16 +157,15 @@ class Simulation:
             from control_msgs.msg import JointTrajectoryControllerState
             from trajectory_msgs.msg import JointTrajectory
 
+            from . import action
+
             def trajectory(message, c=c):
-                stamp = message.header.stamp.sec + message.header.stamp.nanosec * 1e-9
-                points = [(p.time_from_start.sec + p.time_from_start.nanosec * 1e-9,
-                           list(p.positions), list(p.velocities), list(p.accelerations))
-                          for p in message.points]
-                c.receive(message.joint_names, stamp, points)
+                c.receive(*action.from_message(message), now=self.time)
                 self._report(c)
             node.create_subscription(JointTrajectory, f"{base}/joint_trajectory", trajectory, 10)
             self.publishers[c.name] = node.create_publisher(
                 JointTrajectoryControllerState, f"{base}/controller_state", 10)
+            action.serve(self, c)   # ~/follow_joint_trajectory
         elif isinstance(c, ctl.Forward):
             from std_msgs.msg import Float64MultiArray
 
