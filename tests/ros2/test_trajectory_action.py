@@ -76,7 +76,7 @@ def test_a_new_goal_preempts_the_running_one(run):
     assert old["accepted"] and old["status"] == ABORTED
     assert old["error_code"] == -1   # INVALID_GOAL
     assert old["error_string"] == "Current goal preempted by new incoming action."
-    assert new["status"] == SUCCEEDED and abs(new["position"] - 0.2) < 0.02, new
+    assert new["status"] == SUCCEEDED and abs(new["settled"] - 0.2) < 0.02, new
 
 
 def test_a_canceled_goal_ends_canceled_and_the_joint_holds(run):

@@ -124,6 +124,9 @@ def main() -> int:
     second, _ = c.goal([0.2], 0.5)
     out["preempted"] = {"accepted": first.accepted, **c.result(first)}
     out["preempting"] = {"accepted": second.accepted, **c.result(second)}
+    # with no goal tolerance the goal succeeds when its time is up; the joint then settles
+    c.wait(0.5)
+    out["preempting"]["settled"] = c.state[1][MIDDLE]
 
     # canceled on the way: the joint holds where it was
     handle, feedback = c.goal([-0.5], 20.0)
