@@ -10,7 +10,8 @@ upstream's and real ROS 2 nodes and tools exchange them with the stand-in.
 The comments of upstream's files are left out: they do not enter the type hash.
 
 `ensure()` builds the ament_cmake packages with rosidl (CMake from the `cmake` wheel,
-the generators from the ros-jazzy wheels) and installs them into the running Python's
+the generators from the ros-jazzy wheels), with only the generators whose output rclpy
+loads over Fast DDS (GENERATORS), and installs them into the running Python's
 virtual environment: libraries into <venv>/lib, which the wheels' bootstrapper puts on
 LD_LIBRARY_PATH, the Python modules into site-packages and the ament index into
 <venv>/share, beside the wheels' own packages. A separate Python of the same environment
@@ -18,7 +19,7 @@ LD_LIBRARY_PATH, the Python modules into site-packages and the ament index into
 Outside a writable virtual environment they go to a cache folder instead, which
 `environment()` adds to a process's paths.
 
-    python -m sw2sim.ros2.messages     # build them if needed (about a minute once; then a no-op)
+    python -m sw2sim.ros2.messages     # build them if needed (half a minute once; then a no-op)
 """
 
 from __future__ import annotations
@@ -200,13 +201,28 @@ VERSIONS = {"tf2_msgs": "0.36.4", "control_msgs": "5.8.0",   # upstream's, for p
             "controller_manager_msgs": "4.46.0"}
 PYPI_HINT = 'pip install "sw2sim[ros2]"'
 
+# The generators run, in this order: what rclpy over rmw_fastrtps_cpp, the one RMW PyPI
+# has, loads of a message package. rclpy imports <package>_s__rosidl_typesupport_c
+# (rosidl_generator_py), whose handle dispatches by typesupport (rosidl_typesupport_c);
+# rmw_fastrtps_cpp asks it for rosidl_typesupport_fastrtps_c to (de)serialize and for
+# rosidl_typesupport_introspection_c to register the type's XTypes type object (each C++
+# counterpart only where the C one is missing); the type hash and description come from
+# rosidl_generator_c's code, made from the type description generator's JSON.
+# rosidl_default_generators adds the C++ headers and typesupports, which nothing here
+# loads (PyPI has no rclcpp), at more than twice the build time.
+GENERATORS = ("rosidl_generator_type_description", "rosidl_generator_c",
+              "rosidl_typesupport_fastrtps_c", "rosidl_typesupport_introspection_c",
+              "rosidl_typesupport_c", "rosidl_generator_py")
+
 
 class MessagesError(RuntimeError):
     """The message packages could not be built (the reason, with the build's last lines)."""
 
 
 def digest() -> str:
-    return hashlib.sha256(repr(sorted(DEFINITIONS.items())).encode()).hexdigest()[:12]
+    """Of every file the packages are built from: a change to one builds them again."""
+    files = [(name, sorted(package_files(name).items())) for name in DEFINITIONS]
+    return hashlib.sha256(repr(files).encode()).hexdigest()[:12]
 
 
 def _in_writable_venv() -> bool:
@@ -265,7 +281,7 @@ def ensure(say=None) -> Path:
             return where
         if say:
             say(f"sw2sim ros2: building the {', '.join(DEFINITIONS)} message packages into "
-                f"{where} (once, about a minute)")
+                f"{where} (once, about half a minute)")
         began = time.monotonic()
         with tempfile.TemporaryDirectory(prefix="sw2sim-ros2-messages-") as scratch:
             _build_all(Path(scratch), where)
@@ -276,13 +292,18 @@ def ensure(say=None) -> Path:
 
 def write_package(name: str, folder: Path) -> None:
     """The ament_cmake package `name` in `folder`: package.xml, CMakeLists.txt, msg/."""
-    depends, files = DEFINITIONS[name]
-    folder.mkdir(parents=True, exist_ok=True)
-    for file, text in files.items():
+    for file, text in package_files(name).items():
         (folder / file).parent.mkdir(parents=True, exist_ok=True)
         (folder / file).write_text(text, encoding="utf-8")
+
+
+def package_files(name: str) -> dict[str, str]:
+    """The files of the ament_cmake package `name`, by path in its folder."""
+    depends, files = DEFINITIONS[name]
     depend_lines = "".join(f"  <depend>{d}</depend>\n" for d in depends)
-    (folder / "package.xml").write_text(
+    generator_lines = "".join(f"  <buildtool_depend>{g}</buildtool_depend>\n"
+                              for g in GENERATORS)
+    package_xml = (
         '<?xml version="1.0"?>\n<package format="3">\n'
         f"  <name>{name}</name>\n  <version>{VERSIONS[name]}</version>\n"
         f"  <description>The {name} messages sw2sim ros2 uses, as upstream defines them"
@@ -290,12 +311,12 @@ def write_package(name: str, folder: Path) -> None:
         '  <maintainer email="sw2sim@example.com">sw2sim</maintainer>\n'
         "  <license>BSD-3-Clause</license>\n"
         "  <buildtool_depend>ament_cmake</buildtool_depend>\n"
-        "  <buildtool_depend>rosidl_default_generators</buildtool_depend>\n"
+        f"{generator_lines}"
         f"{depend_lines}"
         "  <exec_depend>rosidl_default_runtime</exec_depend>\n"
         "  <member_of_group>rosidl_interface_packages</member_of_group>\n"
         "  <export><build_type>ament_cmake</build_type></export>\n"
-        "</package>\n", encoding="utf-8")
+        "</package>\n")
     finds = "".join(f"find_package({d} REQUIRED)\n" for d in depends)
     # The wheels' CMake exports name the include folder of the machine that built them
     # on their Python targets (for every package find_package brought in, dependencies
@@ -309,18 +330,36 @@ def write_package(name: str, folder: Path) -> None:
         "  endif()\n"
         "endforeach()\n")
     interfaces = " ".join(f'"{f}"' for f in files)
-    (folder / "CMakeLists.txt").write_text(
-        "cmake_minimum_required(VERSION 3.10)\n"
+    cmake_lists = (
+        "cmake_minimum_required(VERSION 3.16)\n"
         f"project({name})\n"
         "find_package(ament_cmake REQUIRED)\n"
-        "find_package(rosidl_default_generators REQUIRED)\n"
+        "find_package(rosidl_cmake REQUIRED)\n"
+        f"set(STATIC_ROSIDL_TYPESUPPORT_C {';'.join(GENERATORS[2:4])})\n"
+        f"foreach(generator {' '.join(GENERATORS)})\n"
+        "  find_package(${generator} REQUIRED)\n"
+        "endforeach()\n"
         f"{finds}"
         "find_package(Python3 REQUIRED COMPONENTS Interpreter Development)\n"
         f"{fixes}"
+        # the dependencies' packages may bring other generators in: only these run
+        "list(FILTER AMENT_EXTENSIONS_rosidl_generate_idl_interfaces INCLUDE REGEX\n"
+        f'  "^({"|".join(GENERATORS)}):")\n'
         f"rosidl_generate_interfaces(${{PROJECT_NAME}} {interfaces}\n"
         f"  DEPENDENCIES {' '.join(depends)})\n"
+        # Each library's generated files compiled as one unit, which reads the headers
+        # (Fast CDR's C++ ones above all) once instead of once a file; but the type
+        # descriptions, which all define the same static names.
+        f"foreach(library {' '.join(GENERATORS[1:])})\n"
+        "  set_target_properties(${PROJECT_NAME}__${library} PROPERTIES\n"
+        "    UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE 0)\n"
+        "endforeach()\n"
+        "get_target_property(sources ${PROJECT_NAME}__rosidl_generator_c SOURCES)\n"
+        'list(FILTER sources INCLUDE REGEX "__description[.]c$")\n'
+        "set_source_files_properties(${sources} PROPERTIES SKIP_UNITY_BUILD_INCLUSION ON)\n"
         "ament_export_dependencies(rosidl_default_runtime)\n"
-        "ament_package()\n", encoding="utf-8")
+        "ament_package()\n")
+    return {**files, "package.xml": package_xml, "CMakeLists.txt": cmake_lists}
 
 
 def _build_all(scratch: Path, where: Path) -> None:
