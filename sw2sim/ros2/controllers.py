@@ -32,6 +32,9 @@ An effort a PID computes is kept as a law affine in the joint's position and vel
 Not simulated: the trajectory's effort feed-forward, angle wraparound of continuous
 joints, decelerate_on_cancel, interpolate_from_desired_state, speed scaling, the
 query_state service, chained controllers.
+
+It is over 500 lines because joint_trajectory_controller's update (tolerances, goal
+endings, partial goals) reads best as one class beside the others it is compared with.
 """
 
 from __future__ import annotations
