@@ -6,7 +6,6 @@ with its reason where it is missing."""
 
 from __future__ import annotations
 
-import itertools
 import json
 import os
 import signal
@@ -16,25 +15,20 @@ from pathlib import Path
 
 import pytest
 
+import ros2_domains
 from ros2_environment import PYTHON, missing
 from sw2sim.ros2 import discovery
 
 HERE = Path(__file__).parent
 EXAMPLE_3 = HERE.parents[1] / "examples" / "example_3"
 STOP_TIMEOUT = 5.0
-_domains = itertools.count()
-
-
-def free_domain() -> int:
-    """A domain id for one test: 100-199, by worker and by test (xdist workers run apart)."""
-    worker = os.environ.get("PYTEST_XDIST_WORKER", "gw0").lstrip("gw") or "0"
-    return 100 + (int(worker) * 17 + next(_domains) + os.getpid()) % 100
 
 
 class Ros2:
     def __init__(self, home: Path):
         home.mkdir(parents=True, exist_ok=True)
-        self.domain = free_domain()
+        self._claim = ros2_domains.claim()   # no other test's traffic in it
+        self.domain = self._claim.id
         self.env = discovery.environment(self.domain)
         self.env.update(ROS_HOME=str(home), ROS_LOG_DIR=str(home / "log"),
                         PYTHONUNBUFFERED="1")
@@ -72,6 +66,7 @@ class Ros2:
     def stop_all(self) -> None:
         for process in self.processes:
             stop(process)
+        self._claim.release()
 
 
 def stop(process: subprocess.Popen) -> None:

@@ -1,8 +1,8 @@
 """An independent ROS 2 node (rclpy only, no sw2sim): it records what the stand-in serves,
 sends the commands it is given, and prints one JSON object once the simulated clock
 is UNTIL seconds past the moment it sent its commands (without commands: past the first
-joint state it received) (or after WALL_TIMEOUT seconds of
-wall time).
+joint state it received) and /robot_description has arrived, or after WALL_TIMEOUT seconds
+of wall time.
 
     python recorder.py UNTIL [--trajectory CONTROLLER JOINT POSITION SECONDS] ...
                              [--commands CONTROLLER V1,V2,...] [--reference CONTROLLER JOINT VALUE]
@@ -116,7 +116,8 @@ def main() -> int:
             sent_at = out["states"][-1][0]
             out["sent_at"] = sent_at
         base = sent_at if senders else (out["states"][0][0] if out["states"] else None)
-        if base is not None and out["clock"] and out["clock"][-1] >= base + args.until:
+        if base is not None and out["clock"] and out["clock"][-1] >= base + args.until \
+                and out["description"] is not None:   # latched, it may come after the states
             break
     print(json.dumps(out))
     node.destroy_node()

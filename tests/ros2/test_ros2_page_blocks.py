@@ -8,7 +8,6 @@ from __future__ import annotations
 
 import json
 import math
-import os
 import re
 import select
 import subprocess
@@ -23,6 +22,7 @@ from course.snippets.ros2 import Ros2BlockError, Session
 from jazzy_commands import (action_problems, action_types, field_tables, jazzy_commands,
                             topic_problems, topic_types)
 from repository import ROOT
+import ros2_domains
 from ros2_environment import PYTHON, missing
 
 RECORD = Path(__file__).with_name("record.py")
@@ -187,11 +187,6 @@ def test_every_ros2_page_has_its_claim():
     assert sorted(CLAIMS) == sorted(p.relative_to(ROOT).as_posix() for p in PAGES)
 
 
-def _domain(index: int) -> int:
-    """A ROS 2 domain id per page, and per test run (two runs at once stay apart)."""
-    return 1 + (os.getpid() % 12) * 8 + index
-
-
 def _wait_for_line(process: subprocess.Popen, line: str, timeout: float = 30.0) -> None:
     """Wait until a process prints `line` on its standard error."""
     deadline = time.monotonic() + timeout
@@ -206,15 +201,16 @@ def _wait_for_line(process: subprocess.Popen, line: str, timeout: float = 30.0) 
 
 
 @pytest.mark.parametrize("path", PAGES, ids=lambda p: p.relative_to(ROOT).as_posix())
-def test_page_ros2_blocks(path, tmp_path, record_property):
+def test_page_ros2_blocks(path, tmp_path, record_property, request):
     if reason := missing():
         pytest.skip(reason)
     page = parse_page(path, ROOT)
     assert not page.errors, "\n".join(map(str, page.errors))
     realtime, seconds, trigger, topics, claim = CLAIMS[page.path]
     fault, recorder = None, None
-    with Session(page, ROOT, tmp_path / "session", _domain(PAGES.index(path)),
-                 realtime=realtime) as session:
+    domain = ros2_domains.claim()   # no other test's traffic in it
+    request.addfinalizer(domain.release)
+    with Session(page, ROOT, tmp_path / "session", domain.id, realtime=realtime) as session:
         try:
             session.prepare()
             recorder = subprocess.Popen(
