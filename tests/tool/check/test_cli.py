@@ -14,6 +14,7 @@ from PIL import Image
 
 from packages import copy_example, edit, urdf_of, zipped
 from sw2sim import cli
+from sw2sim.commands import view
 from sw2sim.check import stability
 from test_stability import negative_damping
 
@@ -230,7 +231,7 @@ def viewer(monkeypatch):
     monkeypatch.setattr(sys, "platform", "linux")
     monkeypatch.setenv("DISPLAY", ":0")
     monkeypatch.setenv("MUJOCO_GL", os.environ.get("MUJOCO_GL", "osmesa"))
-    monkeypatch.setattr(cli, "_glfw_starts", lambda: True)
+    monkeypatch.setattr(view, "_glfw_starts", lambda: True)
     monkeypatch.setattr(mujoco.viewer, "launch", lambda model, *a, **k: shown.append(model))
     return shown
 
