@@ -64,6 +64,17 @@ def test_a_wrong_name_is_caught(ported, tmp_path):
     assert "launch/world.launch.py" in problems[0] and "missing_node.py" in problems[1]
 
 
+def _problems(folder, name, commands, tables_of, problems_of) -> list[str]:
+    """What the checks find in a page holding `commands` in a ROS 2 block: the field
+    tables made from the page's lines by `tables_of`, then `problems_of(line, tables)`."""
+    page = folder / f"{name}.md"
+    page.write_text(f"---\ntitle: t\n---\n\n```bash\n{commands}```\n"
+                    '{: data-ros2-needs="ROS 2 Jazzy"}\n', encoding="utf-8")
+    lines = jazzy_commands(parse_page(page, folder))
+    tables = tables_of(lines)
+    return [p for line in lines for p in problems_of(line, tables)]
+
+
 def test_a_wrong_topic_type_or_field_is_caught(tmp_path):
     from jazzy_commands import field_tables, topic_problems, topic_types
     from ros2_environment import missing
@@ -81,14 +92,9 @@ def test_a_wrong_topic_type_or_field_is_caught(tmp_path):
            'ros2 topic pub --once /arm_controller/joint_trajectory std_msgs/msg/Float64 "{data: 1}"\n'
            'ros2 topic echo /arm_controller/state\n'
            'ros2 topic echo /arm_controller/controller_state --field error.position\n')
-    found = {}
-    for name, text in (("good", good), ("bad", bad)):
-        page = tmp_path / f"{name}.md"
-        page.write_text(f"---\ntitle: t\n---\n\n```bash\n{text}```\n"
-                        '{: data-ros2-needs="ROS 2 Jazzy"}\n', encoding="utf-8")
-        lines = jazzy_commands(parse_page(page, tmp_path))
-        tables = field_tables(topic_types(lines, graph))
-        found[name] = [p for c in lines for p in topic_problems(c, graph, tables)]
+    found = {name: _problems(tmp_path, name, text, lambda lines: field_tables(
+                 topic_types(lines, graph)), lambda c, t: topic_problems(c, graph, t))
+             for name, text in (("good", good), ("bad", bad))}
     assert found["good"] == []
     assert len(found["bad"]) == 4, found["bad"]
     assert "no field 'position'" in found["bad"][0]
@@ -114,14 +120,10 @@ def test_a_wrong_action_type_or_goal_field_is_caught(tmp_path):
            '"{command: {position: 0.1}}"\n'
            f'{send} /arm_controller/follow_joint_trajectory control_msgs/action/'
            'FollowJointTrajectory "{trajectory: {points: [{position: [0.5]}]}}"\n')
-    found = {}
-    for name, text in (("good", good), ("bad", bad)):
-        page = tmp_path / f"{name}.md"
-        page.write_text(f"---\ntitle: t\n---\n\n```bash\n{text}```\n"
-                        '{: data-ros2-needs="ROS 2 Jazzy"}\n', encoding="utf-8")
-        lines = jazzy_commands(parse_page(page, tmp_path))
-        tables = field_tables(action_types(lines))
-        found[name] = [p for c in lines for p in action_problems(c, graph, tables)]
+    found = {name: _problems(tmp_path, name, text,
+                             lambda lines: field_tables(action_types(lines)),
+                             lambda c, t: action_problems(c, graph, t))
+             for name, text in (("good", good), ("bad", bad))}
     assert found["good"] == []
     assert len(found["bad"]) == 3, found["bad"]
     assert "no action /arm/follow_joint_trajectory" in found["bad"][0]
