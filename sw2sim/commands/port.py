@@ -19,7 +19,9 @@ into the folder OUT (the package's folder: put it in a workspace's src/):
   launch/display.launch.py, launch/gazebo.launch.py   RViz; Gazebo Sim with the controllers
   README.md                how to build and run it, and every choice made for you
 Each choice is also printed. The source is never changed. OUT must be new, empty, or
-an earlier output of sw2sim port (which is replaced). A name ROS 2 refuses
+an earlier output of sw2sim port: porting again replaces only what the port writes and
+keeps your files there (a node in scripts/), and the port's files you changed (kept as
+they are when the port writes them as before, else as FILE.mine). A name ROS 2 refuses
 (Arm_Assembly, robot.SLDASM, 2wd_car) is made legal (arm_assembly, robot_sldasm,
 r2wd_car); --name chooses another. The ROS 1 scripts/ are not ported: rospy nodes
 need rewriting with rclpy. Exit status: 0 written, 2 the input or OUT cannot be used.
@@ -35,7 +37,8 @@ examples:
 def add_arguments(parser) -> None:
     package_path(parser)
     parser.add_argument("-o", "--output", metavar="OUT", required=True,
-                        help="the new package's folder (created; an earlier port is replaced)")
+                        help="the new package's folder (created; in an earlier port's, your own "
+                             "files are kept)")
     parser.add_argument("--name", metavar="NEW", help="the ROS 2 package's name (default: the "
                         "source's, made legal)")
     parser.add_argument("--effort-joints", metavar="NAME[,NAME...]", action="append",

@@ -15,10 +15,17 @@
 The source is read as every command reads it (a folder or a .zip; a .xacro-only package is
 expanded) and never written to. Every decision taken for the user is a line of
 `PortReport.choices`, printed by the command and listed in README.md.
+
+Porting again into an earlier port's folder replaces only what the port writes: the files
+the user added there (a node in scripts/, notes) stay, and so do the port's files the user
+changed when the new port would write them as before (a CMakeLists.txt with an install()
+line added, as the ROS 2 pages have the reader do). The marker file, MARKER, lists the
+files a port wrote with the SHA-256 of each, which tells the two apart.
 """
 
 from __future__ import annotations
 
+import hashlib
 import json
 import os
 import shutil
@@ -33,6 +40,7 @@ from . import cmake, controllers, defaults, launch, manifest, naming, rviz, urdf
 from .readme import readme
 
 MARKER = ".sw2sim-port"   # names the files an earlier port wrote, so it may be replaced
+MINE = ".mine"            # a port's file the user changed, set aside beside the new one
 
 __all__ = ["PortError", "PortReport", "port"]
 
@@ -50,6 +58,11 @@ class PortReport:
     controllers: list[str] = field(default_factory=list)
     source: str = ""
     replaced: bool = False
+    # what an earlier port's folder held that was kept: the user's own files, and the
+    # port's files the user changed (kept as they are, or beside the new one as FILE.mine)
+    kept: list[str] = field(default_factory=list)
+    kept_changed: list[str] = field(default_factory=list)
+    set_aside: list[str] = field(default_factory=list)
 
     def format(self) -> str:
         meshes = sum(f.startswith("meshes/") for f in self.files)
@@ -61,6 +74,15 @@ class PortReport:
         lines.append(("replaced the earlier port in " if self.replaced else "wrote ") +
                      f"{self.package_dir}: {', '.join(listed)}" +
                      (f" and {meshes} mesh file(s) in meshes/" if meshes else ""))
+        if self.kept:
+            lines.append(f"kept your files, which the port does not write: {', '.join(self.kept)}")
+        if self.kept_changed:
+            lines.append(f"kept as you changed them: {', '.join(self.kept_changed)} (the port "
+                         "would write them as it did before)")
+        for aside in self.set_aside:
+            rel = aside[:aside.rindex(MINE)]
+            lines.append(f"{rel}: you had changed it, and the port now writes it differently: "
+                         f"yours is kept as {aside}; carry your changes over to the new {rel}")
         lines.append(f"build it: copy the folder into a workspace's src/, run `colcon build`, "
                      f"then `ros2 launch {self.name} gazebo.launch.py`")
         return "\n".join(lines)
@@ -77,7 +99,8 @@ def port(source: str | os.PathLike | Package, out: str | os.PathLike, *,
 
     Raises sw2sim.LoadError when the source cannot be read, PortError when `out` or an
     option cannot be used; nothing is written then. `out` must be missing, empty, or an
-    earlier port's output (which is replaced).
+    earlier port's output: its files that the port wrote are replaced, the user's own kept
+    (PortReport.kept, kept_changed and set_aside say which).
     """
     package = as_package(source)
     out = Path(out)
@@ -155,10 +178,12 @@ def port(source: str | os.PathLike | Package, out: str | os.PathLike, *,
     files["README.md"] = readme(new_name, package.name, planned.names, choices, listed,
                                 added.usage)
 
-    replaced = _write(out, files)
+    keep = _keep(out, files)
+    replaced = _write(out, files, keep)
     return PortReport(name=new_name, package_dir=out, choices=choices,
                       files=[f for f in listed if f in files], controllers=planned.names,
-                      source=shown_source, replaced=replaced)
+                      source=shown_source, replaced=replaced, kept=keep.own,
+                      kept_changed=keep.changed, set_aside=keep.aside)
 
 
 def _name(package: Package, wanted: str | None, choices: list[str]) -> str:
@@ -257,33 +282,85 @@ def _check_out(out: Path, source: Path) -> None:
         raise PortError(f"{out} is a file; give a folder to write the package into")
     if not out.is_dir() or not any(out.iterdir()):
         return
-    earlier = _earlier(out)
-    if earlier is None:
+    if _earlier(out) is None:
         raise PortError(f"{out} is not empty and is not an earlier output of sw2sim port, so "
                         "nothing was written. Choose a new folder, or empty this one.")
-    present = {p.relative_to(out).as_posix() for p in out.rglob("*")
-               if p.is_file() or p.is_symlink()} - {MARKER}
-    others = sorted(present - earlier)
-    if others:
-        raise PortError(f"{out} is an earlier port, but holds files it did not write: "
-                        f"{', '.join(others[:8])}{' ...' if len(others) > 8 else ''}; nothing "
-                        "was replaced. Move them out (or port into a new folder) and run it again.")
 
 
-def _earlier(out: Path) -> set[str] | None:
+def _earlier(out: Path) -> dict[str, str | None] | None:
+    """The files an earlier port wrote into `out`, each with the SHA-256 it wrote (None
+    from a port that recorded none); None when `out` is no earlier port's."""
     try:
-        listed = json.loads((out / MARKER).read_text(encoding="utf-8"))["files"]
-    except (OSError, ValueError, KeyError, TypeError):
+        marker = json.loads((out / MARKER).read_text(encoding="utf-8"))
+        listed, digests = marker["files"], marker.get("sha256", {})
+        return {str(f): digests.get(f) for f in listed}
+    except (OSError, ValueError, KeyError, TypeError, AttributeError):
         return None
-    return {str(f) for f in listed}
 
 
-def _write(out: Path, files: dict[str, str | Path]) -> bool:
-    """Write the package into a new folder beside `out`, then put it in `out`'s place."""
+def _digest(content: str | Path | bytes) -> str:
+    if isinstance(content, Path):
+        content = content.read_bytes()
+    elif isinstance(content, str):
+        content = content.encode("utf-8")
+    return hashlib.sha256(content).hexdigest()
+
+
+@dataclass
+class _Keep:
+    """What of an earlier port's folder goes into the new one."""
+    copy: dict[str, str] = field(default_factory=dict)   # old rel -> new rel
+    folders: list[str] = field(default_factory=list)     # the user's empty folders
+    own: list[str] = field(default_factory=list)
+    changed: list[str] = field(default_factory=list)
+    aside: list[str] = field(default_factory=list)
+
+
+def _keep(out: Path, files: dict[str, str | Path]) -> _Keep:
+    """What of `out`, if it is an earlier port, stays: every file the port did not write,
+    and each file it wrote that the user changed since (kept in place when the new port
+    writes it as the earlier did, else set aside as FILE.mine)."""
+    keep = _Keep()
+    earlier = _earlier(out) if out.is_dir() else None
+    if earlier is None:
+        return keep
+    for path in sorted(out.rglob("*")):
+        rel = path.relative_to(out).as_posix()
+        if rel == MARKER:
+            continue
+        if path.is_dir() and not path.is_symlink():
+            if not any(path.iterdir()):
+                keep.folders.append(rel)
+            continue
+        wrote = earlier.get(rel, "")      # "" for a file no port wrote
+        if rel in earlier and (wrote is None or path.is_symlink() or _digest(path) == wrote):
+            continue          # the port's own, unchanged (or a port that kept no digests)
+        if rel not in files:
+            keep.copy[rel] = rel
+            keep.own.append(rel)
+        elif not path.is_symlink() and _digest(path) == _digest(files[rel]):
+            continue          # already what the new port writes
+        elif rel in earlier and _digest(files[rel]) == wrote:
+            keep.copy[rel] = rel
+            keep.changed.append(rel)
+        else:
+            aside, n = rel + MINE, 2
+            while (out / aside).exists() or aside in files:   # an older FILE.mine stays
+                aside, n = f"{rel}{MINE}{n}", n + 1
+            keep.copy[rel] = aside
+            keep.aside.append(aside)
+    return keep
+
+
+def _write(out: Path, files: dict[str, str | Path], keep: _Keep | None = None) -> bool:
+    """Write the package into a new folder beside `out`, with what `keep` keeps of it, then
+    put it in `out`'s place."""
+    keep = keep or _Keep()
     out = Path(os.path.abspath(out))
     out.parent.mkdir(parents=True, exist_ok=True)
     scratch = Path(tempfile.mkdtemp(prefix=f".{out.name}-", dir=out.parent))
     try:
+        digests = {}
         for rel, content in files.items():
             target = scratch / rel
             target.parent.mkdir(parents=True, exist_ok=True)
@@ -291,7 +368,17 @@ def _write(out: Path, files: dict[str, str | Path]) -> bool:
                 shutil.copyfile(content, target)
             else:
                 target.write_text(content, encoding="utf-8", newline="\n")
-        (scratch / MARKER).write_text(json.dumps({"files": sorted(files)}, indent=1) + "\n",
+            digests[rel] = _digest(content)
+        for old, new in keep.copy.items():
+            target = scratch / new
+            target.parent.mkdir(parents=True, exist_ok=True)
+            if target.exists() or target.is_symlink():
+                target.unlink()
+            shutil.copy2(out / old, target, follow_symlinks=False)
+        for rel in keep.folders:
+            (scratch / rel).mkdir(parents=True, exist_ok=True)
+        (scratch / MARKER).write_text(json.dumps({"files": sorted(files), "sha256": digests},
+                                                 indent=1, sort_keys=True) + "\n",
                                       encoding="utf-8")
         scratch.chmod(0o755)
         replaced = out.exists() and any(out.iterdir())
