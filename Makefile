@@ -76,15 +76,17 @@ $(STAMPS)/venv: requirements.txt pyproject.toml
 # 90 MB more (Qt 5 and OGRE, mostly). Debian 12's joint_state_publisher_gui stops at start
 # and would take the place of sw2sim's own (sw2sim/ros/sliders.py), so it is left out;
 # python3-tk is the toolkit of sw2sim's, and x11-utils (xwininfo) lets the tests see its
-# window open (tests/ros/test_display_launch.py). The venv reaches Debian's pure-Python ROS
-# modules through a .pth file read last, so its own libraries still come first. Where the
-# distribution has no ROS 1 (Ubuntu 24.04, Debian 13) this says so and goes on; the ROS
-# tests are then skipped with that reason, and the RViz pictures are kept as they are.
+# window open (tests/ros/test_display_launch.py); rosbash is `rosrun` (with rospack-tools,
+# 0.2 MB). Debian ships no rqt: the pages give a line that runs here beside each rqt tool.
+# The venv reaches Debian's pure-Python ROS modules through a .pth file read last, so its
+# own libraries still come first. Where the distribution has no ROS 1 (Ubuntu 24.04,
+# Debian 13) this says so and goes on; the ROS tests are then skipped with that reason,
+# and the RViz pictures are kept as they are.
 ROS_PACKAGES := python3-rospy python3-roslaunch python3-rostopic python3-rosservice \
                 python3-rosnode rosout python3-std-msgs python3-std-srvs python3-sensor-msgs \
                 python3-rosgraph-msgs python3-tf2-msgs python3-genpy python3-genmsg \
                 ros-std-msgs ros-geometry-msgs ros-robot-state-publisher \
-                rviz joint-state-publisher xvfb catkin python3-tk x11-utils
+                rviz joint-state-publisher xvfb catkin python3-tk x11-utils rosbash
 ROS_PTH := zz-debian-ros.pth
 
 $(STAMPS)/ros: Makefile $(STAMPS)/venv
