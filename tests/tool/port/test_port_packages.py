@@ -100,6 +100,14 @@ def test_colcon_build_installs_every_port(workspace, installed):
                 / name).is_file()
         meshes = sorted(p.name for p in (share / "meshes").iterdir())
         assert meshes == sorted(p.name for p in (reports[name].package_dir / "meshes").iterdir())
+    # `source install/setup.bash`, as the pages have the reader type, finds every package
+    # (colcon-bash writes the file; colcon-core alone writes only setup.sh)
+    shown = subprocess.run(["bash", "-c", "source install/setup.bash && echo $AMENT_PREFIX_PATH"],
+                           cwd=installed.parent, capture_output=True, text=True, timeout=60,
+                           env={"PATH": os.environ["PATH"], "HOME": str(installed.parent)})
+    assert shown.returncode == 0, shown.stderr
+    prefixes = shown.stdout.strip().split(os.pathsep)
+    assert all(str(installed / name) in prefixes for name in reports), prefixes
     # the exporter's arm, which has no controllers of its own, installs the one it was given
     arm = yaml.safe_load((installed / "r3_dof_arm_description" / "share" / "r3_dof_arm_description"
                           / "config" / "controllers.yaml").read_text())
