@@ -23,6 +23,8 @@ COMMANDS: dict[str, tuple[str, str]] = {
                            "in Gazebo's place"),
     "ros2": ("ros2", "run a ROS 2 package's robot under rclpy, with MuJoCo in Gazebo Sim's "
                      "place"),
+    "plot": ("plot", "plot topics' numeric fields over time under ROS 1 or ROS 2, in "
+                     "rqt_plot's place"),
     "port": ("port", "write a ROS 2 Jazzy package from the ROS 1 package"),
     "edits": ("edits", "save a package's hand edits, and restore them after exporting again"),
 }
