@@ -2,8 +2,10 @@
 Gazebo's place.
 
 It uses the master at ROS_MASTER_URI when one answers, and starts its own otherwise (on
-127.0.0.1, at ROS_MASTER_URI's port when that names this machine). Everything it starts
-runs in process groups of its own, stopped (SIGINT, then SIGKILL) at the end: after
+127.0.0.1, at ROS_MASTER_URI's port when that names this machine; when that port is
+taken, it says so, names what holds it, and prints the line that reaches the port it uses
+instead). Everything it starts runs in process groups of its own, stopped (SIGINT, then
+SIGKILL) at the end: after
 --duration seconds, when the launch ends, when a node of the launch could not start or
 died (sw2sim.ros.launch_faults: the node is named, the status is 1), or on SIGINT, SIGTERM
 or SIGHUP (sw2sim.ros.stop_signals: status 128 + the signal's number). Should `sw2sim ros`
@@ -21,6 +23,7 @@ import subprocess
 import sys
 import time
 import urllib.parse
+import xmlrpc.client
 from pathlib import Path
 
 DEBIAN = ("python3-rospy python3-roslaunch python3-rostopic python3-rosservice python3-rosnode "
@@ -41,9 +44,24 @@ def missing() -> str | None:
             "course). Other systems: ROS 1 needs Debian 12, Ubuntu 20.04 or WSL2 with one of them.")
 
 
+ANSWER_TIMEOUT = 3.0   # s for a master to answer; what holds a port and never answers is none
+
+
+class _Timed(xmlrpc.client.Transport):
+    def make_connection(self, host):
+        connection = super().make_connection(host)
+        connection.timeout = ANSWER_TIMEOUT
+        return connection
+
+
 def _answers(uri: str) -> bool:
-    import rosgraph
-    return bool(rosgraph.is_master_online(master_uri=uri))
+    """A ROS master answers at `uri` (rosgraph's is_online asks without a time limit, and
+    waits for ever on a port whose holder accepts and says nothing)."""
+    try:
+        code, _, _ = xmlrpc.client.ServerProxy(uri, transport=_Timed()).getPid("/sw2sim")
+    except (OSError, ValueError, xmlrpc.client.Error):
+        return False
+    return code == 1
 
 
 def _free(port: int) -> bool:
@@ -55,26 +73,91 @@ def _free(port: int) -> bool:
             return False
 
 
-def _port() -> int:
-    if _free(11311):
-        return 11311
+DEFAULT_URI = "http://localhost:11311"   # ROS's, where ROS_MASTER_URI is unset
+
+
+def _any_port() -> int:
     with socket.socket() as s:
         s.bind(("127.0.0.1", 0))
         return s.getsockname()[1]
 
 
-def _master_port(uri: str | None) -> int:
-    """The port for the master started here: ROS_MASTER_URI's when it names this machine
-    and the port is free, so that commands in other terminals with the same ROS_MASTER_URI
-    find it; otherwise 11311, or any free port when that is taken."""
+def _listening_inodes(port: int) -> set[str]:
+    """The socket inodes that listen on `port` (Linux: /proc/net/tcp and tcp6)."""
+    found = set()
+    for table in ("/proc/net/tcp", "/proc/net/tcp6"):
+        try:
+            lines = Path(table).read_text(encoding="ascii", errors="replace").splitlines()[1:]
+        except OSError:
+            continue
+        for line in lines:
+            fields = line.split()
+            # local address "ADDR:PORT" in hex, state 0A: LISTEN; field 9: the inode
+            if len(fields) > 9 and fields[3] == "0A" and int(fields[1].rsplit(":", 1)[1], 16) == port:
+                found.add(fields[9])
+    return found
+
+
+def holder(port: int) -> str | None:
+    """What listens on `port` of this machine, as "PID (command line)", when /proc says
+    (only the processes of this user, or all as root, can be read); None otherwise."""
+    inodes = {f"socket:[{inode}]" for inode in _listening_inodes(port)}
+    if not inodes:
+        return None
+    for entry in Path("/proc").glob("[0-9]*"):
+        try:
+            fds = list((entry / "fd").iterdir())
+        except OSError:
+            continue
+        links = set()
+        for fd in fds:
+            try:
+                links.add(os.readlink(fd))
+            except OSError:      # closed meanwhile (the listing's own, for one)
+                pass
+        if links & inodes:
+            try:
+                line = (entry / "cmdline").read_bytes().replace(b"\0", b" ").decode(errors="replace")
+            except OSError:
+                line = ""
+            return f"{entry.name} ({line.strip() or '?'})"
+    return None
+
+
+def master_address(uri: str | None) -> tuple[int, list[str]]:
+    """The port for the master started here, when none answers at ROS_MASTER_URI (`uri`,
+    ROS's default when unset), and what to tell the reader about it: ROS_MASTER_URI's port
+    when it names this machine and is free, so that other terminals with the same
+    ROS_MASTER_URI find the master. A port that is taken, or an address on another
+    machine, is said, with what holds the port, the command that frees it, and another
+    port for this run (its address then goes into the line for other terminals)."""
+    given = uri or DEFAULT_URI
     try:
-        parsed = urllib.parse.urlsplit(uri or "")
-        port = parsed.port
+        parsed = urllib.parse.urlsplit(given)
+        host, port = parsed.hostname, parsed.port
     except ValueError:
-        return _port()
-    if parsed.hostname in LOCAL_NAMES and port and _free(port):
-        return port
-    return _port()
+        host = port = None
+    if host in LOCAL_NAMES and port:
+        if _free(port):
+            return port, []
+        new = _any_port()
+        who = holder(port)
+        told = [f"ROS_MASTER_URI={given} names port {port} of this machine, where no ROS "
+                f"master answers, and the port is taken"
+                + (f" by PID {who}" if who else f" (/proc shows no process of this user "
+                   f"listening there; `ss -tanp 'sport = :{port}'` as root shows what holds it)")
+                + ".",
+                f"This run's master uses port {new} instead; other terminals need its "
+                f"address (the line below)."]
+        if who:
+            told.append(f"To use port {port} again, stop what holds it: kill {who.split()[0]}")
+        return new, told
+    chosen = 11311 if _free(11311) else _any_port()
+    why = (f"ROS_MASTER_URI={given} is not an address of this machine (127.0.0.1 or localhost)"
+           if port or host else f"ROS_MASTER_URI={given} is not a master's address "
+                                f"(http://HOST:PORT)")
+    return chosen, [f"{why}, and no master answers there: this run starts its own on port "
+                    f"{chosen} of this machine; other terminals need its address (the line below)."]
 
 
 def environment(package_root: Path, realtime: float) -> dict[str, str]:
@@ -201,15 +284,27 @@ def run(path: str, launch: str | None = None, duration: float | None = None,
     return _Run(launch_file, env, _told(say)).run(duration)
 
 
-def _terminal_line(env: dict[str, str]) -> str:
-    """What another terminal runs to reach this run: the master's address unless it is
-    ROS's default, and `sw2sim ros-env` through the course's sw2sim."""
+def _terminal_line(env: dict[str, str], given: str | None = None) -> str:
+    """What another terminal runs to reach this run: `sw2sim ros-env` through the course's
+    sw2sim, after the master's address unless it is ROS's default and the one this run
+    was given (`given`, ROS_MASTER_URI before the run: a terminal with that value set
+    would look there)."""
     uri = env.get("ROS_MASTER_URI", "")
     beside = Path(sys.executable).with_name("sw2sim")   # this environment's, activated or not
     line = f'eval "$({beside if beside.is_file() else "sw2sim"} ros-env)"'
-    if uri.rstrip("/") not in ("http://localhost:11311", "http://127.0.0.1:11311"):
+    if _place(uri) != _place(DEFAULT_URI) or _place(given or DEFAULT_URI) != _place(uri):
         line = f"export ROS_MASTER_URI={uri}; {line}"
     return line
+
+
+def _place(uri: str) -> tuple:
+    """Where a master's address leads: (host, port), this machine's names as one."""
+    try:
+        parsed = urllib.parse.urlsplit(uri)
+        host, port = parsed.hostname, parsed.port
+    except ValueError:
+        return (uri,)
+    return ("127.0.0.1" if host in LOCAL_NAMES else host, port)
 
 
 def _told(say):
@@ -257,9 +352,11 @@ class _Run:
         """Start the master (if needed) and the launch, and wait for the run's end; a
         status to return, or None for the verdict on the launch."""
         env = self.env
-        uri = env.get("ROS_MASTER_URI")
+        given = uri = env.get("ROS_MASTER_URI")
         if not uri or not _answers(uri):
-            port = _master_port(uri)
+            port, told = master_address(uri)
+            for line in told:
+                self.tell(f"sw2sim ros: {line}")
             uri = env["ROS_MASTER_URI"] = f"http://127.0.0.1:{port}"
             self.started.append(subprocess.Popen(["roscore", "-p", str(port)], env=env,
                                                  start_new_session=True, preexec_fn=with_ctrl_c,
@@ -276,7 +373,7 @@ class _Run:
         self.tell(f"sw2sim ros: {shown(self.launch_file) or self.launch_file} on {uri}, MuJoCo "
                   "standing in for Gazebo")
         self.tell("sw2sim ros: for ROS commands in another terminal, run there first: "
-                  + _terminal_line(env))
+                  + _terminal_line(env, given))
         self.roslaunch = subprocess.Popen(["roslaunch", "--wait", str(self.launch_file)],
                                           env=env, start_new_session=True,
                                           preexec_fn=with_ctrl_c, stderr=subprocess.PIPE)
