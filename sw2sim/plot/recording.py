@@ -3,13 +3,16 @@ loop that draws them, and the CSV they make.
 
 Each sample's time is the message's header stamp where the message has a header and the
 stamp is set, as rqt_plot takes it (rosplot.py's `_ros_cb`,
-https://github.com/ros-visualization/rqt_plot/blob/0.4.14/src/rqt_plot/rosplot.py#L118-L133),
+https://github.com/ros-visualization/rqt_plot/blob/0.4.14/src/rqt_plot/rosplot.py#L116-L134),
 else the ROS time at which it arrived: simulated time while a simulation publishes /clock.
 The plot's time axis counts from the first sample of any series. (rqt_plot counts from
 when it started; Jazzy's takes the wall clock for messages without a header, and
-subtracts the wall clock's start from header stamps, which lands simulated stamps about
-1.7e9 s before zero: https://github.com/ros-visualization/rqt_plot/blob/1.4.0/src/rqt_plot/rosplot.py#L160-L166
-and plot_widget.py#L208. Here both ROS generations use ROS time.)
+subtracts the wall clock's start from header stamps, which puts simulated stamps about
+1.7e9 s before zero:
+https://github.com/ros-visualization/rqt_plot/blob/1.4.0/src/rqt_plot/rosplot.py#L160-L166,
+https://github.com/ros-visualization/rqt_plot/blob/1.4.0/src/rqt_plot/plot_widget.py#L208;
+1.4.0 is Jazzy's first release, and the changelog of its later ones names no change to
+either. Here both generations use ROS time.)
 """
 
 from __future__ import annotations
