@@ -5,7 +5,9 @@ print it as JSON:
     python reset_probe.py wheels   # Practice 1: reset_simulation while its node runs
 
 {"clock": [t, ...], "states": [[stamp, {joint: position}, {joint: velocity}], ...],
- "controller": [stamp, ...], "marks": {name: value}}
+ "controller": [stamp, ...], "tf": [stamp, ...], "marks": {name: value}}
+`tf` holds the stamps of robot_state_publisher's transforms to the frame TF_FRAME names
+(Practice 4's block, the child of its moving joint).
 `clock` and `states` are in the order they arrived; `marks` holds the times and positions
 the probe read around each reset. Run by test_reset.py in a process of its own, as a
 separate rospy node.
@@ -22,8 +24,10 @@ from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import JointState
 from std_msgs.msg import Float64
 from std_srvs.srv import Empty
+from tf2_msgs.msg import TFMessage
 
 WALL_TIMEOUT = 60.0
+TF_FRAME = "block_link"
 PULSE = 62.6          # rad/s a pulse of periodic_force_node.py adds to each wheel
 
 
@@ -42,7 +46,9 @@ class Probe:
                  "use_sim_time")
         rospy.init_node("reset_probe", anonymous=True, disable_signals=True)
         self.clock, self.states, self.controller, self.marks = [], [], [], {}
+        self.tf = []
         rospy.Subscriber("/clock", Clock, lambda m: self.clock.append(m.clock.to_sec()))
+        rospy.Subscriber("/tf", TFMessage, self.on_tf)
         rospy.Subscriber(states_topic, JointState, self.on_state)
         if controller_topic:
             from control_msgs.msg import JointControllerState
@@ -63,6 +69,10 @@ class Probe:
                             dict(zip(message.name, message.position)),
                             dict(zip(message.name, message.velocity))])
 
+    def on_tf(self, message):
+        self.tf += [t.header.stamp.to_sec() for t in message.transforms
+                    if t.child_frame_id == TF_FRAME]
+
     def position(self, joint: str) -> float:
         return self.properties(joint).position[0]
 
@@ -72,7 +82,8 @@ class Probe:
 
     def report(self) -> None:
         print(json.dumps({"clock": self.clock, "states": self.states,
-                          "controller": self.controller, "marks": self.marks}))
+                          "controller": self.controller, "tf": self.tf,
+                          "marks": self.marks}))
 
 
 def block(probe: Probe) -> None:

@@ -138,7 +138,9 @@ def _back(times: list[float]) -> int:
 def test_the_block_over_ros_resets_as_in_gazebo(ros):
     """Practice 4 under roslaunch: with physics paused, reset_world puts the block back at
     0 and keeps the time; the block returns to its 1.5 m command; reset_simulation puts it
-    back again and the clock restarts near 0, never to jump forward to the old time."""
+    back again and the clock restarts near 0, never to jump forward to the old time; the
+    joint states, and robot_state_publisher's /tf with them, are silent until the clock
+    passes the old time, and the controller's state goes on at once."""
     _launch(ros, "example_4")
     record = _probe(ros, "block")
     marks, clock = record["marks"], record["clock"]
@@ -159,6 +161,13 @@ def test_the_block_over_ros_resets_as_in_gazebo(ros):
     assert np.all(np.diff(states) > 0) and states[-1] > marks["old_time"] + 0.5
     controller = record["controller"]
     assert controller[_back(controller)] < 0.2
+    # robot_state_publisher (Debian's) follows the joint states: the block's transform is
+    # silent with them, then comes back with them, its stamps never going back either
+    tf = record["tf"]
+    assert len(tf) > 20 and np.all(np.diff(tf) >= 0), "/tf went back after the reset"
+    before = [t for t in tf if t <= marks["old_time"]]
+    after = [t for t in tf if t > marks["old_time"]]
+    assert before and after and after[0] < marks["old_time"] + 0.5, (before[-3:], after[:3])
 
 
 def test_the_periodic_force_node_lives_through_a_reset(ros):
