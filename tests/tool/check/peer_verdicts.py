@@ -60,8 +60,8 @@ def urdf_parser_py(path: Path) -> dict | None:
 
 
 def _urdf_parser_py():
-    """urdf_parser_py.urdf, or None. Imported by name: neither the project's environment nor
-    Debian 12 ships it, so it is no declared dependency, only a parser asked where present."""
+    """urdf_parser_py.urdf (PyPI's urdf_parser_py 0.0.4, in the test extra and
+    requirements.txt), or None where it is not installed."""
     try:
         return importlib.import_module("urdf_parser_py.urdf")
     except ImportError:
