@@ -309,7 +309,7 @@ class Simulation:
 
     def _joint_states(self, stamp):
         from sensor_msgs.msg import JointState
-        m, d = self.model, self.data
+        d = self.data
         message = JointState()
         message.header.stamp = stamp
         names = list(self.joint_names)
@@ -317,10 +317,15 @@ class Simulation:
         fields = {"position": [], "velocity": [], "effort": []}
         present = {k: any(k in self.setup.joints[n].state for n in names) for k in fields}
         for n in names:
-            qa, va, a, _, _ = self.places[n]
+            qa, va, _, _, _ = self.places[n]
             have = self.setup.joints[n].state
+            # gz_system.cpp (gz_ros2_control 1.2.7) reads position and velocity from Gazebo
+            # Sim each step, never the force (its line is commented out): the effort state
+            # keeps the interface's initial_value, 0 unless the URDF gives one
+            # (https://github.com/ros-controls/gz_ros2_control/blob/1.2.7/gz_ros2_control/src/gz_system.cpp#L300-L351,
+            # #L538-L549)
             values = {"position": float(d.qpos[qa]), "velocity": float(d.qvel[va]),
-                      "effort": float(d.actuator_force[a])}
+                      "effort": self.setup.joints[n].initial.get("effort", 0.0)}
             for k in fields:
                 if present[k]:
                     fields[k].append(values[k] if k in have else math.nan)

@@ -150,7 +150,7 @@ def main() -> int:
                           [i.name for i in h.command_interfaces]] for h in components.component]
 
     c.send("end_arm_controller", "end_arm_joint", 0.4, 1.0)
-    c.run_for(None, until=0.4)
+    out["moving"] = c.run_for(None, until=0.4)
     out["moved"] = c.run_for(0.5)[-1][1]   # settled
     out["deactivate"] = c.switch(["end_arm_controller"], [], SwitchController.Request.STRICT,
                                  False, 5.0)
