@@ -22,7 +22,7 @@ from .findings import ERROR, WARNING, rule
 from .geometry import (Inertial, Tree, enclosed_volume, inertial_of, link_geometry,
                        origin_matrix)
 from .repairs import balanced, repair, write_inertial, write_tensor
-from .trimeshes import corners, hull, hull_planes, hull_volume
+from .trimeshes import corners, hull, hull_planes, hull_volume, solid_properties
 
 # MuJoCo's smallest mass or principal moment of inertia (mjMINVAL).
 MJMINVAL = 1e-15
@@ -57,11 +57,30 @@ FRAME_DENSITY = 1000.0
 # material of machined robot parts; the fix names steel's and ABS's beside it.
 PROPOSED_DENSITY = 2700
 
+# A tensor MuJoCo refuses on a link with geometry belongs to a real part, unless it is
+# absurd for the link's mass. No body of mass m can have a principal moment above m D^2,
+# where D is the largest distance from its centre of mass to any of its points: at most the
+# diagonal of the box around the whole model at rest, which the link lies within. A
+# largest moment ten times that bound (the margin covers a model whose size is known only
+# roughly) is a placeholder typed in, such as (1, 100, 1) kg m^2 on a 0.1 g frame: it
+# becomes the inertia of the link's own geometry as a uniform solid of its stated mass.
+# Merged with its parent by a fixed joint, the placeholder would change the parent too.
+PLACEHOLDER_MARGIN = 10.0
+
 FRAME_FIX = ("give the frame a tensor a body can have: the inertia of what it carries (a "
              "tool's, from SolidWorks' Mass Properties), or for a bare frame the same small "
              "value for ixx, iyy and izz and zero for the products, as convert does")
 FRAME = (f"its mass is kept, and the tensor becomes that of a solid sphere of that mass at "
          f"{FRAME_DENSITY:g} kg/m^3 (MuJoCo's default density), or zero for a massless frame.")
+
+PLACEHOLDER = (f"on a link with geometry, a tensor whose largest moment exceeds "
+               f"{PLACEHOLDER_MARGIN:g} m D^2 (m the link's mass, D the diagonal of the box "
+               f"around the model at rest; no body of mass m within that size can reach m "
+               f"D^2) is a placeholder too: it becomes the inertia of the link's geometry as a "
+               f"uniform solid of its stated mass, and the mass is kept.")
+PLACEHOLDER_FIX = ("write the part's real tensor (SolidWorks: Mass Properties, at the centre of "
+                   "mass), or for a frame that carries nothing, a small one: the same small "
+                   "value for ixx, iyy and izz and zero for the products")
 
 RECOMPUTE = ("only when asked: with `--density KG_PER_M3` (your material's density), the link's "
              "mass, centre of mass and inertia are computed from its collision mesh, or its "
@@ -125,7 +144,8 @@ rule("inertia-not-positive-definite", ERROR, "inertia", "An inertia tensor is no
          "iyz = -Lyz), as the exporter writes them.",
      seen_in=("mujoco#759", "mujoco#2491"),
      repair=f"a link with no visual or collision geometry (a tool or sensor frame) has only a "
-            f"placeholder tensor: {FRAME} A moving link whose six terms are all zero is "
+            f"placeholder tensor: {FRAME} And {PLACEHOLDER} A moving link whose six terms "
+            f"are all zero is "
             f"repaired {RECOMPUTE}")
 rule("inertia-triangle", ERROR, "inertia", "The principal moments break A + B >= C",
      symptom="MuJoCo stops with \"inertia must satisfy A + B >= C; use 'balanceinertia' to "
@@ -140,7 +160,7 @@ rule("inertia-triangle", ERROR, "inertia", "The principal moments break A + B >=
      repair=f"a shortfall of at most {ROUNDING:.1%} of C is rounding: the two smaller moments are "
             f"raised together until A + B = C, the principal axes kept. Larger ones are "
             f"repaired only on a link with no visual or collision geometry (a tool or sensor "
-            f"frame), whose tensor can only be a placeholder: {FRAME}")
+            f"frame), whose tensor can only be a placeholder: {FRAME} And {PLACEHOLDER}")
 rule("com-outside-geometry", WARNING, "inertia", "The centre of mass lies outside the link",
      symptom="The link leans, tips or swings as if weighted on one side; the model falls "
              "over where the real machine stands.",
@@ -194,7 +214,7 @@ def check(ctx) -> None:
             ctx.add("inertial-incomplete", f'link "{name}": the <inertial> has no '
                     f"{', '.join(inertial.missing)}", line=source_line(at, None))
         mass_ok = _mass(ctx, tree, name, inertial, alone=not mass)
-        _tensor(ctx, link, inertial, alone=not inertia)
+        _tensor(ctx, tree, link, inertial, alone=not inertia)
         if mass_ok and inertial.centre is not None:
             _placement(ctx, link, inertial)
     _free_root(ctx, tree, inertials)
@@ -282,7 +302,7 @@ def _mass(ctx, tree: Tree, name: str, inertial: Inertial, alone: bool) -> bool:
     return True
 
 
-def _tensor(ctx, link, inertial: Inertial, alone: bool) -> None:
+def _tensor(ctx, tree: Tree, link, inertial: Inertial, alone: bool) -> None:
     """Report an inertia tensor MuJoCo refuses."""
     name = link.get("name", "")
     tensor = inertial.tensor
@@ -302,10 +322,13 @@ def _tensor(ctx, link, inertial: Inertial, alone: bool) -> None:
     a, b, c = (float(m) for m in np.linalg.eigvalsh(tensor))
     shown = f"{a:.4g}, {b:.4g}, {c:.4g} kg m^2"
     frame = _frame_tensor(link, inertial)
+    fix = FRAME_FIX
+    if frame is None and (a <= MJMINVAL or a + b < c * (1 - ROUNDING)):
+        frame, fix = _placeholder_tensor(ctx, tree, link, inertial, c), PLACEHOLDER_FIX
     if a <= MJMINVAL:
         ctx.add("inertia-not-positive-definite", f'link "{name}": the principal moments of '
                 f"its inertia are {shown}; all three must be positive", line=line,
-                repair=frame, fix=FRAME_FIX if frame else None)
+                repair=frame, fix=fix if frame else None)
     elif a + b < c * (1 - TRIANGLE_SLACK):
         short = c - (a + b)
         fixed = None
@@ -320,7 +343,7 @@ def _tensor(ctx, link, inertial: Inertial, alone: bool) -> None:
             fixed = frame
         ctx.add("inertia-triangle", f'link "{name}": the principal moments of its inertia are '
                 f"{shown}, and {a:.4g} + {b:.4g} = {a + b:.4g} is less than {c:.4g}", line=line,
-                repair=fixed, fix=FRAME_FIX if frame and fixed is frame else None)
+                repair=fixed, fix=fix if frame and fixed is frame else None)
 
 
 def _frame_tensor(link, inertial: Inertial):
@@ -344,6 +367,80 @@ def _frame_tensor(link, inertial: Inertial):
                   f"of a solid sphere of that mass at {FRAME_DENSITY:g} kg/m^3 (radius "
                   f"{radius * 1000:.3g} mm), {moment:.3g} kg m^2 about every axis",
                   (element, write_tensor(np.eye(3) * moment)))
+
+
+def _placeholder_tensor(ctx, tree: Tree, link, inertial: Inertial, largest: float):
+    """For a link with geometry whose tensor MuJoCo refuses: when the largest moment is
+    absurd for the link's mass (see PLACEHOLDER_MARGIN), the repair that gives it the
+    inertia of its geometry as a uniform solid of that mass; else None."""
+    mass, element = inertial.mass, inertial.element.find("inertia")
+    if mass is None or mass <= MJMINVAL or element is None:
+        return None   # mass-not-positive, inertial-incomplete: the mass is in doubt
+    size = _model_size(ctx, tree)
+    bound = mass * size ** 2
+    if not largest > PLACEHOLDER_MARGIN * bound:
+        return None
+    solid = _solid_of(ctx, link)
+    if solid is None:
+        return None
+    kind, closed, volume, tensor = solid
+    tensor = tensor * (mass / volume)
+    turn = origin_matrix(inertial.element)[:3, :3]
+    written = turn.T @ tensor @ turn
+    moments = np.linalg.eigvalsh(tensor)
+    name = link.get("name", "")
+    what = f"its closed {kind} geometry" if closed else f"the convex hull of its {kind} geometry"
+    return repair(f'link "{name}" weighs {mass:.4g} kg, and its largest moment, {largest:.4g} '
+                  f"kg m^2, is {largest / bound:.3g} times the most any body of that mass "
+                  f"within the model's {size:.3g} m can have (m D^2 = {bound:.3g} kg m^2), so "
+                  f"the tensor is a placeholder: its mass is kept, and the tensor becomes that "
+                  f"of {what} as a uniform solid of that mass, principal moments "
+                  f"{', '.join(f'{m:.3g}' for m in moments)} kg m^2",
+                  (element, write_tensor(written)))
+
+
+def _solid_of(ctx, link):
+    """(kind, closed, volume, inertia tensor about its centroid at density 1, link axes) of
+    the link's collision geometry, else its visual; None when neither can be measured."""
+    for kind in ("collision", "visual"):
+        pieces = link_geometry(ctx, link, kind)
+        if pieces:
+            break
+    else:
+        return None
+    closed = all(enclosed_volume(p) is not None for p in pieces)
+    if closed:
+        triangles = np.vstack([p.mesh.triangles for p in pieces])
+    else:
+        shape = hull(np.vstack([p.mesh.vertices for p in pieces]))
+        if shape is None:
+            return None
+        triangles = shape.triangles
+    volume, _, tensor = solid_properties(triangles)
+    if not volume > 0 or not np.all(np.isfinite(tensor)):
+        return None
+    return kind, closed, volume, tensor
+
+
+def _model_size(ctx, tree: Tree) -> float:
+    """The diagonal of the box around the model at rest: every link's origin and the corners
+    of the boxes around its visual and collision geometry, in the root's frame."""
+    points = []
+    for name, link in ctx.links.items():
+        pose = tree.pose(name)
+        if pose is None:
+            continue
+        points.append(pose[:3, 3])
+        for kind in ("visual", "collision"):
+            for piece in link_geometry(ctx, link, kind) or ():
+                low, high = corners(piece.mesh.vertices)
+                box = np.array([[x, y, z] for x in (low[0], high[0]) for y in (low[1], high[1])
+                                for z in (low[2], high[2])])
+                points.extend(box @ pose[:3, :3].T + pose[:3, 3])
+    if not points:
+        return 0.0
+    low, high = corners(np.array(points))
+    return float(np.linalg.norm(high - low))
 
 
 def _by_density(ctx, link) -> str | None:

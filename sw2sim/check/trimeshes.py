@@ -407,3 +407,22 @@ def hull_planes(points: np.ndarray) -> np.ndarray | None:
     normals = normals[keep] / lengths[keep, None]
     offsets = -np.einsum("ij,ij->i", normals, triangles[keep, 0])
     return np.column_stack([normals, offsets])
+
+
+def solid_properties(triangles: np.ndarray) -> tuple[float, np.ndarray, np.ndarray]:
+    """Volume, centroid and inertia tensor about the centroid (at density 1) of the solid
+    that closed, outward-facing triangles (n x 3 x 3) bound.
+
+    Each triangle and the origin make a tetrahedron of signed volume det / 6, with
+    det = a . (b x c); its second moment sum(x x^T) over the volume is det / 120 times
+    (a a^T + b b^T + c c^T + s s^T), s = a + b + c. Summed, moved to the centroid, and
+    turned into the inertia tensor: trace(C) I - C."""
+    a, b, c = triangles[:, 0], triangles[:, 1], triangles[:, 2]
+    det = np.einsum("ij,ij->i", a, np.cross(b, c))
+    volume = float(det.sum()) / 6
+    s = a + b + c
+    centroid = (det[:, None] * s).sum(axis=0) / (24 * volume)
+    second = np.einsum("i,ij,ik->jk", det, a, a) + np.einsum("i,ij,ik->jk", det, b, b) \
+        + np.einsum("i,ij,ik->jk", det, c, c) + np.einsum("i,ij,ik->jk", det, s, s)
+    second = second / 120 - volume * np.outer(centroid, centroid)
+    return volume, centroid, np.trace(second) * np.eye(3) - second

@@ -112,15 +112,87 @@ def test_a_frame_whose_placeholder_is_not_positive_definite_is_repaired_alike(tm
     simulated(tmp_path / "out")
 
 
-def test_a_placeholder_on_a_link_with_geometry_is_not_repaired(tmp_path, capsys):
-    """A link with a mesh is a real part: its wrong tensor is the user's to correct."""
+def test_a_wrong_tensor_of_a_plausible_size_on_a_link_with_geometry_is_not_repaired(
+        tmp_path, capsys):
+    """A link with a mesh is a real part: a wrong tensor of the size its mass allows is the
+    user's to correct."""
     package = write_export(ORIGINAL_3_DOF_ARM, tmp_path)
     edit_re(urdf_of(package), r'(name="link3">.*?)ixx="[^"]*"\s+ixy="[^"]*"\s+ixz="[^"]*"\s+'
-            r'iyy="[^"]*"\s+iyz="[^"]*"\s+izz="[^"]*"', rf"\1{PLACEHOLDER}")
+            r'iyy="[^"]*"\s+iyz="[^"]*"\s+izz="[^"]*"',
+            r'\1ixx="2e-05" ixy="0" ixz="0" iyy="2e-05" iyz="0" izz="7e-05"')
     [finding] = [f for f in check(package, stability=False).findings
                  if f.rule == "inertia-triangle"]
     assert finding.repair is None
     assert convert(package, tmp_path / "out", capsys=capsys)[0] == 1
+
+
+# The hand-edited arm measured: a grasping frame of 0.1 g at the end of the arm, with a small
+# visual box to show it and the placeholder tensor (1, 100, 1) kg m^2.
+GRASPING = 'ixx="1" ixy="0" ixz="0" iyy="100" iyz="0" izz="1"'
+
+
+def _grasping_frame(folder: Path) -> Path:
+    package = write_export(ORIGINAL_3_DOF_ARM, folder)
+    edit(urdf_of(package), "</robot>",
+         '  <link\n    name="grasping_frame">\n    <inertial>\n'
+         '      <origin\n        xyz="0 0 0"\n        rpy="0 0 0" />\n'
+         '      <mass\n        value="0.0001" />\n'
+         f'      <inertia\n        {GRASPING} />\n    </inertial>\n'
+         '    <visual>\n      <origin\n        xyz="0 0 0"\n        rpy="0 0 0" />\n'
+         '      <geometry>\n        <box\n          size="0.01 0.01 0.01" />\n'
+         '      </geometry>\n    </visual>\n  </link>\n'
+         '  <joint\n    name="grasping_frame_joint"\n    type="fixed">\n'
+         '    <origin\n      xyz="0.18 0 0"\n      rpy="0 0 0" />\n'
+         '    <parent\n      link="link3" />\n    <child\n      link="grasping_frame" />\n'
+         '  </joint>\n</robot>')
+    return package
+
+
+def test_a_placeholder_absurd_for_its_mass_is_repaired_whatever_the_geometry(tmp_path, capsys):
+    package = _grasping_frame(tmp_path)
+    before = snapshot(package)
+    report = check(package, stability=False)
+    [finding] = [f for f in report.findings if f.rule == "inertia-triangle"]
+    assert "1 + 1 = 2 is less than 100" in finding.message
+    assert 'link "grasping_frame" weighs 0.0001 kg, and its largest moment, 100 kg m^2' \
+        in finding.repair
+    assert "uniform solid of that mass" in finding.repair
+    assert finding.fix.startswith("write the part's real tensor")
+    assert not report.simulation_stoppers, report.format()
+
+    status, said = convert(package, tmp_path / "out", capsys=capsys)    # default options
+    assert status == 0, said
+    assert "[inertia-triangle]" in said and 'Convert repairs it: link "grasping_frame"' in said
+    assert "[inertia-triangle]" in repairs_in_readme(tmp_path / "out")
+    assert snapshot(package) == before
+    model = compiled(tmp_path / "out")
+    # a 1 cm cube of 0.1 g: m s^2 / 6 about every axis; the parent keeps its own inertia
+    cube = 1e-4 * 0.01 ** 2 / 6
+    assert model.body_mass[model.body("grasping_frame").id] == pytest.approx(1e-4)
+    assert model.body_inertia[model.body("grasping_frame").id] == pytest.approx(
+        [cube] * 3, rel=1e-4)
+    assert model.body_inertia[model.body("link3").id].max() < 1e-4
+    simulated(tmp_path / "out")
+
+
+def test_the_placeholder_bound_is_the_model_size(tmp_path):
+    """The same tensor on a link whose mass can hold it (1 t within the arm's size) is a real,
+    if wrong, tensor: not repaired."""
+    package = _grasping_frame(tmp_path)
+    edit(urdf_of(package), 'value="0.0001"', 'value="1000"')
+    [finding] = [f for f in check(package, stability=False).findings
+                 if f.rule == "inertia-triangle"]
+    assert finding.repair is None
+
+
+def test_solid_properties_match_trimesh():
+    from sw2sim.check.trimeshes import solid_properties
+    shape = trimesh.creation.box(extents=[0.1, 0.2, 0.3])
+    shape.apply_translation([1, 2, 3])
+    volume, centroid, tensor = solid_properties(shape.triangles)
+    assert volume == pytest.approx(shape.volume)
+    assert centroid == pytest.approx(shape.center_mass)
+    assert tensor == pytest.approx(shape.moment_inertia / shape.density, abs=1e-12)
 
 
 # -- moving links of zero mass -------------------------------------------------------------
