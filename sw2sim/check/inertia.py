@@ -341,8 +341,11 @@ def _tensor(ctx, tree: Tree, link, inertial: Inertial, alone: bool) -> None:
                            (element, write_tensor(written)))
         else:
             fixed = frame
+        digits = _digits_apart(a + b, c)
+        shown = ", ".join(f"{m:.{digits}g}" for m in (a, b, c)) + " kg m^2"
         ctx.add("inertia-triangle", f'link "{name}": the principal moments of its inertia are '
-                f"{shown}, and {a:.4g} + {b:.4g} = {a + b:.4g} is less than {c:.4g}", line=line,
+                f"{shown}, and {a:.{digits}g} + {b:.{digits}g} = {a + b:.{digits}g} is less "
+                f"than {c:.{digits}g}", line=line,
                 repair=fixed, fix=fix if frame and fixed is frame else None)
 
 
@@ -367,6 +370,16 @@ def _frame_tensor(link, inertial: Inertial):
                   f"of a solid sphere of that mass at {FRAME_DENSITY:g} kg/m^3 (radius "
                   f"{radius * 1000:.3g} mm), {moment:.3g} kg m^2 about every axis",
                   (element, write_tensor(np.eye(3) * moment)))
+
+
+def _digits_apart(low: float, high: float) -> int:
+    """The significant digits (4 at least) that print `low` < `high` as two numbers in that
+    order: a shortfall of one part in a million must not read "1.702e-10 is less than
+    1.702e-10"."""
+    for digits in range(4, 18):
+        if float(f"{low:.{digits}g}") < float(f"{high:.{digits}g}"):
+            return digits
+    return 17
 
 
 def _placeholder_tensor(ctx, tree: Tree, link, inertial: Inertial, largest: float):

@@ -144,6 +144,18 @@ def test_a_thin_disc_on_the_triangle_boundary_is_accepted(tmp_path):
     load_package(package).compile()
 
 
+def test_a_shortfall_below_the_fourth_digit_is_printed_with_the_digits_that_show_it(tmp_path):
+    # The zero-mass arm's message read "1.702e-10 is less than 1.702e-10".
+    package = _example_1(tmp_path, INERTIA, '<inertia ixx="8.51e-11"')
+    edit(urdf_of(package), 'iyy="0.0159813304730569"', 'iyy="1.70200001e-10"')
+    edit(urdf_of(package), 'izz="0.00839752499701271"', 'izz="8.51e-11"')
+    [finding] = [f for f in check(package, stability=False).findings
+                 if f.rule == "inertia-triangle"]
+    total, limit = finding.message.rsplit(" = ", 1)[1].split(" is less than ")
+    assert float(total) < float(limit), finding.message
+    assert "1.702e-10 is less than 1.70200001e-10" in finding.message
+
+
 def test_an_all_zero_inertia_on_a_moving_link_is_an_error(tmp_path):
     package = copy_example(1, tmp_path)
     edit_re(urdf_of(package), r'(name="front_left_wheel">.*?<inertia)\s.*?/>',
