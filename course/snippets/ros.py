@@ -12,18 +12,26 @@ same terminal. The one liberty taken is speed: SW2SIM_REALTIME makes the stand-i
 REALTIME times faster than real time, and what the pages state is on simulated time.
 
 A ```bash block is split into its commands (a line ending in `\\` goes on), each run by
-bash as in that terminal: a block starts in the folder its `data-ros` names (`example_1`,
-the package's copy, or `example_1/..`, the folder that holds it), and what a command
-changes of the shell (`cd`, `source devel/setup.bash`, `export`) holds for the terminal's
-next command.
+bash as in that terminal. A terminal opens in the clone's folder, runs Getting started's
+set-up, and goes to the folder its first block's `data-ros` names (`example_1`, the
+package's copy, or `example_1/..`, the folder that holds it), as Getting started and the
+pages tell the reader; from then on it stays where the page's commands leave it: what a
+command changes of the shell (`cd`, `source devel/setup.bash`, `export`) holds for the
+terminal's next command, in later blocks too. A command must not take Debian's packages
+(/usr/share) off the terminal's ROS_PACKAGE_PATH.
+
+A page whose front matter says what already runs (`ros_running: roslaunch example_1
+gazebo.launch`, started on an earlier page) first replays, in its terminal 1, the bash
+blocks of terminal 1 of the page that shows that command, up to it: the reader comes from
+there, in that folder and shell.
 
 - `roslaunch`, `rosrun`, `rostopic echo` and a `rostopic pub` without `-1` keep running and
   keep their terminal busy. A block typed into a busy terminal stops what runs there
   first, as the reader's Ctrl-C does; a command after one that keeps running, in the same
   block, is a page fault. After a launch the runner waits until the nodes it starts have
   registered and simulated time runs.
-- `rostopic pub -1` sends its message at once and returns 3 s later, with status 0; the
-  runner goes on once it is sent.
+- `rostopic pub -1` sends its message at once and returns 3 s later (rostopic's
+  _ONCE_DELAY, on the wall clock), with status 0; the runner goes on once it is sent.
 - Every other command must end, with status 0 (`grep` may say 1: nothing found). Before a
   command that names a topic or a service, the runner waits until it exists, as a reader
   waits for Gazebo to come up.
@@ -151,6 +159,7 @@ class Terminal:
 # What a login shell has before the reader types anything (Debian's default PATH).
 LOGIN_PATH = "/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin"
 SETUP_PAGE = "_pages/reference/01-getting-started.md"
+DEBIAN_PACKAGES = "/usr/share"   # where Debian's ROS packages are (rviz, robot_state_publisher)
 
 
 def terminal_setup(root: Path) -> Block:
@@ -188,13 +197,31 @@ class Session:
         self.close()
 
     # -- set-up ------------------------------------------------------------------------
+    @property
+    def earlier_pages(self) -> list[Page]:
+        """The pages with ROS blocks before this one (by path: a practice numbers its
+        pages in reading order)."""
+        from .parse import find_pages, parse_page
+        found = []
+        for path in find_pages(self.root):
+            if path.resolve() == (self.root / self.page.path).resolve():
+                break
+            page = parse_page(path, self.root)
+            if page.ros_blocks:
+                found.append(page)
+        return found
+
+    def prepare_packages(self, page: Page) -> None:
+        """The packages `page` uses, copied into the reader's clone."""
+        examples = self.folder / "examples"
+        for name in sorted({package_of(b.ros) for b in page.ros_blocks}):
+            if not (examples / name).exists():
+                shutil.copytree(self.root / "examples" / name, examples / name)
+
     def prepare(self) -> None:
         """The reader's clone: the packages the page uses, copied, and this repository's
         `.venv` (made by `make setup`, as Getting started says)."""
-        examples = self.folder / "examples"
-        for name in sorted({package_of(b.ros) for b in self.page.ros_blocks}):
-            if not (examples / name).exists():
-                shutil.copytree(self.root / "examples" / name, examples / name)
+        self.prepare_packages(self.page)
         venv = self.folder / ".venv"
         if not venv.exists():
             venv.symlink_to(self.root / ".venv", target_is_directory=True)
@@ -212,8 +239,9 @@ class Session:
                 # what a terminal shows at once; a log file would get it in blocks
                 "PYTHONUNBUFFERED": "1"}
 
-    def terminal(self, number: int, location: str) -> Terminal:
-        """Terminal `number`, opened (and set up) the first time it is used."""
+    def terminal(self, number: int, location: str, ros: str) -> Terminal:
+        """Terminal `number`, opened the first time it is used: in the clone's folder, set
+        up, then in the folder `ros` (the first block's data-ros) names."""
         if number in self.terminals:
             return self.terminals[number]
         if number > 1 and number - 1 not in self.terminals:
@@ -223,6 +251,7 @@ class Session:
         self.terminals[number] = t
         for command in commands(self.setup):
             self.finish(command, t)
+        t.cwd = self.place(ros)
         return t
 
     # -- the blocks --------------------------------------------------------------------
@@ -233,16 +262,33 @@ class Session:
             return
         self.prepare()
         if self.page.ros_running:
-            t = self.terminal(1, f"{self.page.path}:1")
-            self.command(Command(self.page.ros_running, f"{self.page.path}:1 (ros_running)",
-                                 blocks[0].ros), t)
+            self.replay(self.page.ros_running)
         for block in blocks:
             if block.language != "bash":
                 self.node(block)
                 continue
-            t = self.terminal(block.terminal, block.location)
+            t = self.terminal(block.terminal, block.location, block.ros)
             for n, command in enumerate(commands(block)):
                 self.command(command, t, opens_block=n == 0)
+
+    def replay(self, running: str) -> None:
+        """What the page says already runs: terminal 1's blocks of the page that starts it,
+        up to that command, typed into this page's terminal 1."""
+        where = f"{self.page.path}:1 (ros_running)"
+        words = shlex.split(running, comments=True)
+        for page in self.earlier_pages:
+            first = [b for b in page.ros_blocks if b.language == "bash" and b.terminal == 1]
+            if not any(c.words == words for b in first for c in commands(b)):
+                continue
+            self.prepare_packages(page)
+            for block in first:
+                t = self.terminal(1, where, block.ros)
+                for n, command in enumerate(commands(block)):
+                    self.command(command, t, opens_block=n == 0)
+                    if command.words == words:
+                        return
+        raise RosBlockError(where, f"`ros_running: {running}`: no page before this one starts "
+                                   "it in its terminal 1; give the command as that page has it")
 
     def place(self, ros: str) -> Path:
         """The folder a block's `data-ros` names, in the reader's clone."""
@@ -272,8 +318,6 @@ class Session:
             self._stop(t.busy)              # the reader's Ctrl-C, to type here
             self.running.remove(t.busy)
             t.busy = None
-        if opens_block:
-            t.cwd = self.place(command.package)
         if command.program in WINDOWS or self.launches_a_window(command, t):
             self.windows.append(f"{command.location}: {command.text} (opens a window)")
             return
@@ -311,6 +355,12 @@ class Session:
                                 f"terminal {t.number}:\n"
                                 f"{(ended.done.stdout + ended.done.stderr)[-1500:]}")
         t.cwd, t.env = ended.cwd, ended.env
+        packages = t.env.get("ROS_PACKAGE_PATH")
+        if packages is not None and DEBIAN_PACKAGES not in packages.split(os.pathsep):
+            raise RosBlockError(command.location,
+                                f"after `{command.text}`, terminal {t.number}'s ROS_PACKAGE_PATH "
+                                f"({packages}) has lost {DEBIAN_PACKAGES}, where Debian's ROS "
+                                f"packages are (rviz, robot_state_publisher)")
 
     def launches_a_window(self, command: Command, t: Terminal) -> bool:
         """`roslaunch PACKAGE FILE` of a launch file that starts RViz or a GUI."""

@@ -15,7 +15,11 @@ terminal's `rostopic echo .../state` cannot load control_msgs/JointControllerSta
 - CMAKE_PREFIX_PATH gets the stand-ins' prefix, a folder laid out as an installed catkin
   workspace (a `.catkin` file and `share/`): a workspace built with it there keeps the
   stand-ins on ROS_PACKAGE_PATH when its `devel/setup.bash` is sourced, as Gazebo's stay
-  for a Noetic user, whose workspace was built over /opt/ros/noetic;
+  for a Noetic user, whose workspace was built over /opt/ros/noetic. Sourcing it sets
+  ROS_PACKAGE_PATH afresh from the catkin workspaces on CMAKE_PREFIX_PATH (Debian's
+  /etc/catkin/profile.d/1.ros_package_path.sh, from ros_environment), and Debian's own
+  packages in /usr/share are in none: the prefix's `.catkin` names /usr/share among its
+  folders, so that they stay too;
 - SW2SIM_PYTHON is the Python the stand-in nodes run on (the one running this), so they
   work in a terminal where the course's environment is not active;
 - ROS_IP is 127.0.0.1 unless ROS_IP or ROS_HOSTNAME is set: ROS stays on this machine.
@@ -41,8 +45,11 @@ def prefix() -> Path:
     root = generated.parent / STANDIN_PREFIX
     packages.write(root / "share")
     marker = root / ".catkin"
-    if not marker.is_file():
-        marker.write_text("", encoding="utf-8")   # empty: an installed workspace's marker
+    # The folders a sourced workspace's ROS_PACKAGE_PATH takes from this prefix (an empty
+    # file would give `share` alone), separated by ";" as catkin writes them.
+    folders = ";".join([str(root / "share"), DEBIAN_PACKAGES])
+    if not marker.is_file() or marker.read_text(encoding="utf-8") != folders:
+        marker.write_text(folders, encoding="utf-8")
     return root
 
 
@@ -65,6 +72,8 @@ def variables(folders: list[Path] = (), environ: dict[str, str] | None = None) -
     # Where the stand-ins were before (an earlier sw2sim's prefix) is dropped by its name.
     packages = [p for p in (environ.get("ROS_PACKAGE_PATH") or DEBIAN_PACKAGES).split(os.pathsep)
                 if p and not p.endswith(f"{STANDIN_PREFIX}{os.sep}share")]
+    if DEBIAN_PACKAGES not in packages:
+        packages.append(DEBIAN_PACKAGES)
     found = {
         "ROS_PACKAGE_PATH": _joined([str(Path(f).resolve()) for f in folders],
                                     os.pathsep.join(packages), [share]),
