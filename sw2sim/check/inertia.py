@@ -473,7 +473,10 @@ def _by_density(ctx, link) -> str | None:
 
 def convert_command(ctx, density: float = PROPOSED_DENSITY) -> str:
     """`sw2sim convert PKG -o PKG_mujoco --density ...` for the package as the user named it
-    (a folder, a .urdf or a .zip), ready to paste into a shell."""
+    (a folder, a .urdf or a .zip), ready to paste into a shell; under `sw2sim convert`, the
+    user's own command with --density added."""
+    if ctx.options.command:
+        return shlex.join([*ctx.options.command, "--density", f"{density:g}"])
     given = Path(ctx.path)
     if given.suffix.lower() == ".zip":
         base = given.with_suffix("")

@@ -29,6 +29,9 @@ class Options:
     strict: bool = False               # repair nothing (--strict)
     lock_default_limits: bool = False  # exporter-default limits: lock the joint (fixed)
     density: float | None = None       # kg/m^3: recompute wrong masses from the meshes
+    # The user's own `sw2sim convert ...` words when convert runs the check: a fix that
+    # suggests a flag adds it to these, so that -o and the other choices stay the user's.
+    command: tuple[str, ...] | None = None
 
 
 DEFAULT = Options()

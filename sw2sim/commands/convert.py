@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import shlex
 from pathlib import Path
 
 from .options import EXIT_ERRORS, EXIT_OK, EXIT_UNUSABLE, density, package_path, say, urdf_choice
@@ -65,7 +66,7 @@ def run(args) -> int:
             "are left alone).")
         return EXIT_UNUSABLE
     options = Options(strict=args.strict, lock_default_limits=args.lock_default_limits,
-                      density=args.density)
+                      density=args.density, command=_command(args))
     checked = check_package(args.path, options=options, urdf=args.urdf)
     report = checked.report
     if report.status == EXIT_UNUSABLE or report.simulation_stoppers:
@@ -76,8 +77,9 @@ def run(args) -> int:
         masses = [f for f in report.simulation_stoppers
                   if "--density" in (RULES[f.rule].repair or "")]
         if masses and args.density is None and not args.strict:
-            say(f"{len(masses)} of them are masses or inertias: --density KG_PER_M3 (your "
-                "material's, e.g. 2700 for aluminium) computes them from the meshes instead.")
+            say(f"{len(masses)} of them are masses or inertias: "
+                f"`{shlex.join([*_command(args), '--density', '2700'])}` (2700 kg/m^3: "
+                "aluminium; give your material's) computes them from the meshes instead.")
         return report.status
     if report.findings:
         print(report.format())
@@ -90,6 +92,18 @@ def run(args) -> int:
               "(your package is unchanged); README.md lists them under Repairs, with the "
               "lasting fix for each.")
     return _write(checked, out, args.force)
+
+
+def _command(args) -> tuple[str, ...]:
+    """The command the user typed, as its options read it: what a fix suggesting one more
+    flag repeats, with that flag added."""
+    words = ["sw2sim", "convert", args.path, "-o", args.output]
+    if args.urdf:
+        words += ["--urdf", args.urdf]
+    words += [flag for flag, given in (("--force", args.force),
+                                       ("--lock-default-limits", args.lock_default_limits))
+              if given]
+    return tuple(words)
 
 
 def _write(checked, out: Path, force: bool) -> int:

@@ -252,6 +252,19 @@ def test_the_command_names_the_package_as_the_user_did(tmp_path, monkeypatch, ca
     compiled(Path(out))
 
 
+def test_under_convert_the_command_is_the_users_own_with_density_added(tmp_path, capsys):
+    package = _massless_wheels(tmp_path)
+    out = tmp_path / "my models" / "wheels"
+    status, said = convert(package, out, "--force", capsys=capsys)
+    assert status == 1
+    typed = shlex.join(["sw2sim", "convert", str(package), "-o", str(out), "--force"])
+    suggested = f"{typed} --density 2700"
+    assert said.count(f"`{suggested}` converts the package") == 3, said
+    assert f"`{suggested}` (2700 kg/m^3: aluminium" in said
+    assert main(shlex.split(suggested)[1:]) == 0
+    compiled(out)
+
+
 def test_with_density_given_the_fix_is_the_rules_own(tmp_path):
     from sw2sim.check import Options, check_package
     ctx = check_package(_massless_wheels(tmp_path), stability=False,
