@@ -52,3 +52,26 @@ cp node_modules/urdf-loader/README.md "$out/model-viewer/README-urdf-loader.md"
 
 version() { node -p "require('./node_modules/$1/package.json').version" 2>/dev/null || echo '?'; }
 echo "copy-vendor: three $(version three), urdf-loader $(version urdf-loader) -> $out/model-viewer"
+
+# The Simulate mode of the 3D viewer (assets/js/simulation-worker.js): MuJoCo's own
+# WebAssembly build, single-threaded (the multi-threaded one needs cross-origin isolation
+# headers that GitHub Pages cannot send). The worker fetches mujoco.wasm itself, so that the
+# page can show the download's progress; mujoco.json gives it the file's size for that.
+# The package ships no LICENSE file: its package.json names the licence (Apache-2.0, kept in
+# mujoco.json), its README the authors.
+mujoco=node_modules/@mujoco/mujoco
+for file in "$mujoco/mujoco.js" "$mujoco/mujoco.wasm"; do
+    if [ ! -f "$file" ]; then
+        echo "copy-vendor: $file not found: run 'make setup' (it runs npm ci) first." >&2
+        exit 1
+    fi
+done
+mkdir -p "$out/mujoco"
+cp "$mujoco/mujoco.js" "$mujoco/mujoco.wasm" "$out/mujoco/"
+cp "$mujoco/README.md" "$out/mujoco/README-mujoco.md"
+node -e 'const fs = require("fs"); const [from, dir] = process.argv.slice(1);
+  const { version, license } = JSON.parse(fs.readFileSync(from + "/package.json"));
+  fs.writeFileSync(dir + "/mujoco.json", JSON.stringify(
+    { version, license, wasm_bytes: fs.statSync(dir + "/mujoco.wasm").size }) + "\n");' \
+    "$mujoco" "$out/mujoco"
+echo "copy-vendor: @mujoco/mujoco $(version @mujoco/mujoco) -> $out/mujoco"
