@@ -55,8 +55,11 @@ def package_files(root: Path) -> list[Path]:
 
 def matches(files: list[Path], filename: str) -> list[Path]:
     """The files (relative paths) a mesh filename can mean, ignoring case and slashes: those
-    with its file name whose folders agree with the most of its trailing folders."""
-    parts = [p.lower() for p in path_parts(filename)]
+    with its file name whose folders agree with the most of its trailing folders. Where one
+    of them agrees in capitals too, it is the file meant, and the only one returned (Linux
+    would open it; its case variants beside it are copies)."""
+    given = path_parts(filename)
+    parts = [p.lower() for p in given]
     if not parts:
         return []
     same_name = [f for f in files if f.name.lower() == parts[-1]]
@@ -71,7 +74,14 @@ def matches(files: list[Path], filename: str) -> list[Path]:
             best, chosen = agree, [file]
         elif agree == best:
             chosen.append(file)
-    return chosen
+    exact = [f for f in chosen if list(f.parts[-best:]) == given[-best:]]
+    return exact if len(chosen) > 1 and len(exact) == 1 else chosen
+
+
+def case_variants(files: list[Path], file: Path) -> list[Path]:
+    """The other files whose paths differ from `file`'s in capitals only."""
+    key = file.as_posix().lower()
+    return [f for f in files if f != file and f.as_posix().lower() == key]
 
 
 def closest(files: list[Path], filename: str, count: int = 3) -> list[Path]:

@@ -18,7 +18,7 @@ from pathlib import Path
 import numpy as np
 
 from ..mesh_formats import LFS_FIX, beside, lfs_pointer
-from ..mesh_paths import closest, matches
+from ..mesh_paths import case_variants, closest, matches
 from ..xmlsafe import source_line
 from .context import display
 from .findings import ERROR, WARNING, rule
@@ -256,8 +256,12 @@ def _path_repair(ctx, filename: str, meshes):
     found = matches(files, filename)
     if len(found) == 1:
         new = f"package://{ctx.package.name}/{found[0].as_posix()}"
-        return (repair(f'the mesh is read from {found[0].as_posix()}, the one file in the package '
-                       "the path can mean", *((m, set_attribute("filename", new)) for m in meshes)),
+        variants = case_variants(files, found[0])
+        why = ("the file whose name matches the path's exactly, capitals too (beside it, "
+               f"{', '.join(v.as_posix() for v in variants)} differs in capitals only)"
+               if variants else "the one file in the package the path can mean")
+        return (repair(f'the mesh is read from {found[0].as_posix()}, {why}',
+                       *((m, set_attribute("filename", new)) for m in meshes)),
                 f"; the package holds {found[0].as_posix()}",
                 f'write filename="{new}": the name exactly as on disk, with / (Linux and ROS tell '
                 "capitals apart; Windows does not)")

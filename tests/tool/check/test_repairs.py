@@ -160,6 +160,27 @@ def test_a_mesh_path_that_could_mean_two_files_names_both_and_is_not_repaired(tm
     assert status == 1
 
 
+def test_the_file_that_matches_in_capitals_too_is_the_one_meant_and_said_so(tmp_path, capsys):
+    """A Windows path (a backslash) to base_link.STL, with a lower-case copy beside it, as
+    packages edited on Windows and then on Linux hold: the exact name is the file meant."""
+    from sw2sim.mesh_paths import matches
+    package, urdf = _arm(tmp_path)
+    shutil.copy(package / "meshes" / "base_link.STL", package / "meshes" / "base_link.stl")
+    edit(urdf, "package://example_3/meshes/base_link.STL",
+         "package://example_3/meshes\\base_link.STL", count=2)
+    files = [Path("meshes/base_link.STL"), Path("meshes/base_link.stl")]
+    assert matches(files, "package://example_3/meshes\\base_link.STL") == [files[0]]
+    assert matches(files, "package://example_3/meshes/Base_Link.stl") == files
+    report = check(package, stability=False)
+    [finding] = [f for f in report.findings if f.rule == "mesh-not-found"]
+    assert "names no single file" not in finding.message
+    assert finding.repair == ("the mesh is read from meshes/base_link.STL, the file whose name "
+                              "matches the path's exactly, capitals too (beside it, "
+                              "meshes/base_link.stl differs in capitals only)")
+    status, said = convert(package, tmp_path / "out", capsys=capsys)
+    assert status == 0, said
+
+
 def test_a_mesh_path_that_means_no_file_names_the_closest(tmp_path):
     package, urdf = _arm(tmp_path)
     edit(urdf, "package://example_3/meshes/base_link.STL", "package://example_3/meshes/base_lnk.STL",
