@@ -2,6 +2,7 @@
 
 1. the example packages, from the practices' designs   (python -m course.practices)
 2. the figures under media/, from the packages          (python -m course.media)
+   and each practice's model for the site's Simulate mode (python -m course.browser_models)
 3. the Troubleshooting page's data, from the rules      (python -m course.troubleshooting)
 4. what the pages' blocks print, shown under them       (python -m course.snippets.outputs)
 5. the lesson notebooks, from the pages and packages    (python -m course.notebooks)
@@ -17,13 +18,14 @@ import argparse
 import sys
 import time
 
-from . import media, notebooks, troubleshooting
+from . import browser_models, media, notebooks, troubleshooting
 from .practices import __main__ as packages
 from .snippets import outputs as page_outputs
 
 STEPS = [
     ("example packages", packages.main),
     ("figures", media.main),
+    ("browser models", browser_models.main),
     ("troubleshooting data", troubleshooting.main),
     ("page outputs", page_outputs.main),
     ("notebooks", notebooks.main),
