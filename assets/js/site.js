@@ -232,6 +232,35 @@
     window.addEventListener("resize", markAll);
   }
 
+  // ---- Tables that scroll show which way: more-left / more-right -------------------
+  // A table wider than its box (_plugins/tables.rb) gets a shadow at each edge beyond
+  // which more of it lies (.table-box in main.css); with its first column pinned, the
+  // left shadow starts where that column ends.
+  function showWhereTablesContinue() {
+    var boxes = document.querySelectorAll(".table-box");
+    if (!boxes.length) return;
+
+    function mark(box) {
+      var wrap = box.querySelector(".table-wrap");
+      if (!wrap) return;
+      var hidden = wrap.scrollWidth - wrap.clientWidth;
+      box.classList.toggle("more-left", hidden > 1 && wrap.scrollLeft > 1);
+      box.classList.toggle("more-right", hidden > 1 && wrap.scrollLeft < hidden - 1);
+      var first = box.classList.contains("table-pinned") && wrap.querySelector("tr > :first-child");
+      var pinned = first && getComputedStyle(first).position === "sticky" ? first.offsetWidth : 0;
+      box.style.setProperty("--pinned-width", pinned + "px");
+    }
+    function markAll() { boxes.forEach(mark); }
+
+    boxes.forEach(function (box) {
+      var wrap = box.querySelector(".table-wrap");
+      if (wrap) wrap.addEventListener("scroll", function () { mark(box); }, { passive: true });
+    });
+    markAll();
+    if (document.fonts) document.fonts.ready.then(markAll);
+    window.addEventListener("resize", markAll);
+  }
+
   function start() {
     setUpMenu();
     addCopyButtons();
@@ -239,6 +268,7 @@
     setUpLightbox();
     letWideFormulasScroll();
     showWhereFormulasContinue();
+    showWhereTablesContinue();
   }
 
   if (document.readyState === "loading") document.addEventListener("DOMContentLoaded", start);
