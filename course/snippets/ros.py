@@ -72,6 +72,8 @@ REALTIME = 10.0
 # What a launch must not print.
 LAUNCH_FAULTS = re.compile(r"Traceback \(most recent call last\)|process has died|\[ERROR\]"
                            r"|^ERROR:", re.MULTILINE)
+# roslaunch's colours and terminal titles, around its lines ("\x1b[31mERROR: ...")
+TERMINAL_CODES = re.compile(r"\x1b\[[0-9;]*[A-Za-z]|\x1b\][^\x07]*\x07")
 
 
 class RosBlockError(Exception):
@@ -315,6 +317,7 @@ class Session:
                                     f"`{t.busy.command.text}`: put this command in a block "
                                     f"of its own, typed into another terminal "
                                     f"(data-terminal), and say so on the page")
+            self.check_running()            # what it printed until now, faults included
             self._stop(t.busy)              # the reader's Ctrl-C, to type here
             self.running.remove(t.busy)
             t.busy = None
@@ -447,7 +450,7 @@ class Session:
                 raise RosBlockError(r.command.location, f"`{r.command.text}` stopped with "
                                                         f"{r.process.returncode}:\n{_tail(r.log)}")
             if r.command.words[0] == "roslaunch":
-                text = r.log.read_text(errors="replace")
+                text = TERMINAL_CODES.sub("", r.log.read_text(errors="replace"))
                 if m := LAUNCH_FAULTS.search(text):
                     start = max(0, m.start() - 600)
                     raise RosBlockError(r.command.location, f"`{r.command.text}` printed a "

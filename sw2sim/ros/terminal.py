@@ -18,8 +18,8 @@ terminal's `rostopic echo .../state` cannot load control_msgs/JointControllerSta
   for a Noetic user, whose workspace was built over /opt/ros/noetic. Sourcing it sets
   ROS_PACKAGE_PATH afresh from the catkin workspaces on CMAKE_PREFIX_PATH (Debian's
   /etc/catkin/profile.d/1.ros_package_path.sh, from ros_environment), and Debian's own
-  packages in /usr/share are in none: the prefix's `.catkin` names /usr/share among its
-  folders, so that they stay too;
+  packages in /usr/share are in none: the prefix's environment hook (DEBIAN_HOOK, which
+  catkin's setup runs after that one) puts /usr/share back at the end;
 - SW2SIM_PYTHON is the Python the stand-in nodes run on (the one running this), so they
   work in a terminal where the course's environment is not active;
 - ROS_IP is 127.0.0.1 unless ROS_IP or ROS_HOSTNAME is set: ROS stays on this machine.
@@ -36,6 +36,16 @@ from pathlib import Path
 
 STANDIN_PREFIX = "ros-prefix"   # folder name beside the generated messages
 DEBIAN_PACKAGES = "/usr/share"  # where Debian's ROS packages are, when ROS_PACKAGE_PATH is unset
+# A catkin environment hook of the prefix: a sourced workspace's setup runs it after it has
+# set ROS_PACKAGE_PATH from the workspaces alone.
+DEBIAN_HOOK = "etc/catkin/profile.d/50.sw2sim_debian_packages.sh"
+HOOK_TEXT = f"""\
+# Written by sw2sim ros-env: Debian's ROS packages ({DEBIAN_PACKAGES}) stay on ROS_PACKAGE_PATH.
+case ":$ROS_PACKAGE_PATH:" in
+  *:{DEBIAN_PACKAGES}:*) ;;
+  *) export ROS_PACKAGE_PATH="${{ROS_PACKAGE_PATH:+$ROS_PACKAGE_PATH:}}{DEBIAN_PACKAGES}" ;;
+esac
+"""
 
 
 def prefix() -> Path:
@@ -45,11 +55,15 @@ def prefix() -> Path:
     root = generated.parent / STANDIN_PREFIX
     packages.write(root / "share")
     marker = root / ".catkin"
-    # The folders a sourced workspace's ROS_PACKAGE_PATH takes from this prefix (an empty
-    # file would give `share` alone), separated by ";" as catkin writes them.
-    folders = ";".join([str(root / "share"), DEBIAN_PACKAGES])
-    if not marker.is_file() or marker.read_text(encoding="utf-8") != folders:
-        marker.write_text(folders, encoding="utf-8")
+    # Empty: an installed workspace's marker. (Naming folders in it would make them the
+    # prefix's source folders, and roslaunch would then look for Debian's nodes, such as
+    # rostopic, in this prefix alone, and not find them.)
+    if not marker.is_file() or marker.read_text(encoding="utf-8"):
+        marker.write_text("", encoding="utf-8")
+    hook = root / DEBIAN_HOOK
+    if not hook.is_file() or hook.read_text(encoding="utf-8") != HOOK_TEXT:
+        hook.parent.mkdir(parents=True, exist_ok=True)
+        hook.write_text(HOOK_TEXT, encoding="utf-8")
     return root
 
 
