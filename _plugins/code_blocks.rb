@@ -42,7 +42,30 @@ module Sw2simSite
         attrs = attrs_text.scan(ATTRIBUTE).to_h
         "<div#{attrs_text}>#{header(attrs, site)}#{skip_badge(attrs)}#{needs_badge(attrs)}" \
           "#{ros_badge(attrs, site)}#{ros2_badge(attrs, site)}#{inner_open}"
-      end.gsub(PRE_OPEN, PRE_FOCUSABLE)
+      end.gsub(PRE_OPEN, PRE_FOCUSABLE).gsub(TEXT_BLOCK) do
+        "#{Regexp.last_match(1)}#{lines_html(Regexp.last_match(2))}#{Regexp.last_match(3)}"
+      end
+    end
+
+    # What a command printed (```text) wraps at every width, each line under its own
+    # indentation (styles: "Whole output lines" in assets/css/main.css): each line that is
+    # not empty becomes a span carrying how far its text is indented (spaces and the
+    # characters of a drawn tree), and the newlines stay between the spans, so that what
+    # is copied is the block's text as it was.
+    TEXT_BLOCK = %r{(<div\b[^>]*\bclass="[^"]*\blanguage-text\b[^>]*>.*?<pre[ ]class="highlight"[^>]*><code>)
+                    (.*?)(</code></pre>)}xm.freeze
+    INDENT = /\A[ \t│├└─┬┼┐┘┌]*/.freeze
+
+    def lines_html(code)
+      code.split("\n", -1).map { |line| line_html(line) }.join("\n")
+    end
+
+    # A line of escaped text as an output line; its indentation counted in characters.
+    def line_html(line)
+      return line if line.empty?
+
+      indent = CGI.unescapeHTML(line.gsub(/<[^>]+>/, ""))[INDENT].length
+      %(<span class="code-output-line" style="--indent: #{indent}">#{line}</span>)
     end
 
     # Attribute values arrive HTML-escaped from kramdown and are written back as they are.

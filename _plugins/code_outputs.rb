@@ -78,11 +78,12 @@ module Sw2simSite
         %(<div class="code-output-text" tabindex="0"><samp>#{lines_html(text)}</samp></div></details>)
     end
 
-    # The output's lines, escaped, each non-empty one in its own span. An empty line is
-    # left bare: an empty inline box would take no height and the blank line would vanish.
+    # The output's lines, escaped, each non-empty one in its own span with its indentation
+    # (_plugins/code_blocks.rb). An empty line is left bare: an empty inline box would take
+    # no height and the blank line would vanish.
     def lines_html(text)
       text.split("\n", -1).map do |line|
-        line.empty? ? "" : %(<span class="code-output-line">#{CGI.escapeHTML(line)}</span>)
+        line.empty? ? "" : CodeBlocks.line_html(CGI.escapeHTML(line))
       end.join("\n")
     end
   end

@@ -27,7 +27,9 @@ def permalink(page: str) -> str:
     return re.search(r"^permalink:\s*(\S+)", (ROOT / page).read_text(encoding="utf-8"), re.M)[1]
 
 
-LINE = re.compile(r'<span class="code-output-line">([^<]*)</span>')
+LINE = re.compile(r'<span class="code-output-line" style="--indent: (\d+)">([^<]*)</span>')
+# What counts as a line's indentation: spaces and the characters of a drawn tree.
+INDENT = re.compile(r"[ \t│├└─┬┼┐┘┌]*")
 
 
 def printed(m: re.Match) -> str:
@@ -81,6 +83,10 @@ def test_every_stored_output_is_under_its_block(site):
             # a long one with a hanging indent), the newlines between them.
             assert all(part == "" or LINE.fullmatch(part) for part in m["text"].split("\n")), \
                 file.name
+            # Each span says how far its line is indented, so that a wrap continues under it.
+            for part in filter(None, m["text"].split("\n")):
+                indent, text = LINE.fullmatch(part).groups()
+                assert int(indent) == len(INDENT.match(html.unescape(text))[0]), (file.name, part)
             lines = len(expected.rstrip().splitlines())
             if lines > LONG:
                 folded += 1
