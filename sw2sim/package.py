@@ -210,7 +210,9 @@ def _read_xacro(xacro_file: Path, root: Path, name: str) -> etree._Element:
         _drop_namespaces(robot)
     if robot is None or robot.tag != "robot":
         raise LoadError(xacro_file, "the xacro does not expand to a <robot>", kind="not-urdf")
-    return robot
+    # One attribute per line, so that a finding's line names one (sw2sim.xacro_lines).
+    from .xacro_lines import laid_out
+    return xmlsafe.parse_bytes(laid_out(robot), url=f"{xacro_file}#expanded")
 
 
 def _read_manifest(file: Path) -> etree._Element | None:

@@ -123,6 +123,11 @@ def _source(element) -> list[str]:
     return _sources[url]
 
 
+def source_lines(element) -> list[str]:
+    """The lines of the file `element` was parsed from ([] when it is not known)."""
+    return _source(element)
+
+
 def source_line(element, attribute: str | None = "name") -> int | None:
     """The line holding `attribute` of `element`, else the line where its tag starts.
 

@@ -134,15 +134,28 @@ class Context:
             line = element.sourceline
         expanded = self.package.expanded_from if self.package is not None else None
         if expanded is not None and file is not None and Path(file) == self.package.urdf:
-            # The URDF exists only as xacro's output: its lines are not the user's.
-            file, line = expanded, None
-            message += " (in the URDF the xacro expands to)"
+            # The URDF exists only as xacro's output: the line the .xacro writes it on, where
+            # it is written there literally, else the expanded URDF's line, said.
+            file, line, message = expanded, *self._xacro_line(line, message)
         finding = Finding(rule=rule_id, severity=known.severity, message=message,
                           fix=fix or known.fix, file=None if file is None else display(file),
                           line=line, blocks=known.blocks,
                           repair=None if repair is None else repair.says)
         self.findings.append(finding)
         return finding
+
+    def _xacro_line(self, line: int | None, message: str) -> tuple[int | None, str]:
+        from ..xacro_lines import element_at, parsed_xacro, xacro_line
+        found = None if line is None else element_at(self.robot, line)
+        if found is not None:
+            if not hasattr(self, "_xacro"):
+                self._xacro = parsed_xacro(self.package.expanded_from)
+            mapped = None if self._xacro is None else xacro_line(self._xacro, *found)
+            if mapped is not None:
+                return mapped, message
+        where = f"line {line} of " if line else ""
+        return None, message + (f" ({where}the URDF the xacro expands to; `xacro "
+                                f"{self.package.expanded_from.name}` prints it)")
 
     def repaired_package(self) -> Package | None:
         """The package as convert simulates it: with every repair made, in a copy."""

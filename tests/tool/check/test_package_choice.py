@@ -8,6 +8,7 @@ URDF beside it, an environment URDF, the URDF turned into a xacro with propertie
 from __future__ import annotations
 
 import hashlib
+import re
 import shutil
 from pathlib import Path
 
@@ -17,7 +18,7 @@ import pytest
 from sw2sim.check import check
 from sw2sim.cli import main
 from sw2sim.package import find_package
-from packages import copy_example, edit, urdf_of
+from packages import copy_example, edit, line_of, urdf_of
 
 ENVIRONMENT = """<?xml version="1.0"?>
 <robot name="table">
@@ -130,14 +131,34 @@ def test_a_xacro_only_package_is_expanded_checked_and_converted(tmp_path, capsys
     assert not list((package / "urdf").glob("*.urdf"))     # nothing written beside it
 
 
-def test_a_finding_in_an_expanded_xacro_names_the_xacro_without_a_line(tmp_path):
+def test_a_finding_in_an_expanded_xacro_names_the_xacro_line_that_writes_it(tmp_path):
     package = xacro_only(tmp_path)
     xacro = next((package / "urdf").glob("*.xacro"))
     edit(xacro, 'effort="1000"', 'effort="0"')
     [finding] = [f for f in check(package, stability=False).findings
                  if f.rule == "effort-not-positive"]
+    assert Path(finding.file).name == xacro.name
+    assert finding.line == line_of(xacro, 'effort="0"')
+    assert "expands to" not in finding.message
+
+
+def test_a_finding_in_what_a_macro_writes_names_the_expanded_line_and_says_so(tmp_path):
+    package = xacro_only(tmp_path)
+    xacro = next((package / "urdf").glob("*.xacro"))
+    text = xacro.read_text()
+    # the last link, written by a macro called once
+    start = text.index('<link\n    name="end_arm_link"')
+    end = text.index("</link>", start) + len("</link>")
+    body = text[start:end].replace('name="end_arm_link"', 'name="${name}"')
+    body = re.sub(r'ixx="[^"]*"', 'ixx="-0.001"', body)
+    text = (text[:start] + f'<xacro:macro name="part" params="name">{body}</xacro:macro>\n'
+            '  <xacro:part name="end_arm_link" />' + text[end:])
+    xacro.write_text(text)
+    [finding] = [f for f in check(package, stability=False).findings
+                 if f.rule == "inertia-not-positive-definite"]
     assert Path(finding.file).name == xacro.name and finding.line is None
-    assert "expands to" in finding.message
+    assert re.search(r"\(line \d+ of the URDF the xacro expands to; `xacro example_3.urdf.xacro` "
+                     r"prints it\)", finding.message), finding.message
 
 
 def test_a_xacro_needing_another_package_says_which(tmp_path):
