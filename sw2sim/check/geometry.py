@@ -12,7 +12,8 @@ from dataclasses import dataclass
 import manifold3d
 import numpy as np
 
-from .trimeshes import Mesh, box, cylinder, euler_matrix, sphere
+from .trimeshes import (Mesh, box, corners, cylinder, euler_matrix, hull, solid_properties,
+                        sphere)
 from .urdf import number, vector
 
 
@@ -213,6 +214,50 @@ def _as_solid(mesh: Mesh) -> manifold3d.Manifold | None:
     if solid.status() != manifold3d.Error.NoError or solid.volume() <= 0:
         return None
     return solid
+
+
+def solid_of(ctx, link):
+    """(kind, closed, volume, inertia tensor about its centroid at density 1, link axes) of
+    the link's collision geometry, else its visual; None when neither can be measured."""
+    for kind in ("collision", "visual"):
+        pieces = link_geometry(ctx, link, kind)
+        if pieces:
+            break
+    else:
+        return None
+    closed = all(enclosed_volume(p) is not None for p in pieces)
+    if closed:
+        triangles = np.vstack([p.mesh.triangles for p in pieces])
+    else:
+        shape = hull(np.vstack([p.mesh.vertices for p in pieces]))
+        if shape is None:
+            return None
+        triangles = shape.triangles
+    volume, _, tensor = solid_properties(triangles)
+    if not volume > 0 or not np.all(np.isfinite(tensor)):
+        return None
+    return kind, closed, volume, tensor
+
+
+def model_size(ctx, tree: "Tree") -> float:
+    """The diagonal of the box around the model at rest: every link's origin and the corners
+    of the boxes around its visual and collision geometry, in the root's frame."""
+    points = []
+    for name, link in ctx.links.items():
+        pose = tree.pose(name)
+        if pose is None:
+            continue
+        points.append(pose[:3, 3])
+        for kind in ("visual", "collision"):
+            for piece in link_geometry(ctx, link, kind) or ():
+                low, high = corners(piece.mesh.vertices)
+                box = np.array([[x, y, z] for x in (low[0], high[0]) for y in (low[1], high[1])
+                                for z in (low[2], high[2])])
+                points.extend(box @ pose[:3, :3].T + pose[:3, 3])
+    if not points:
+        return 0.0
+    low, high = corners(np.array(points))
+    return float(np.linalg.norm(high - low))
 
 
 INERTIA_TERMS = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")

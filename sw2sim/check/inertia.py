@@ -11,18 +11,17 @@ no material has) is a warning.
 
 from __future__ import annotations
 
-import shlex
 from pathlib import Path
 
 import numpy as np
 
 from ..xmlsafe import source_line
-from .context import display
 from .findings import ERROR, WARNING, rule
 from .geometry import (Inertial, Tree, enclosed_volume, inertial_of, link_geometry,
-                       origin_matrix)
+                       model_size, origin_matrix, solid_of)
+from .density_command import by_density
 from .repairs import balanced, repair, write_inertial, write_tensor
-from .trimeshes import corners, hull, hull_planes, hull_volume, solid_properties
+from .trimeshes import corners, hull, hull_planes, hull_volume
 
 # MuJoCo's smallest mass or principal moment of inertia (mjMINVAL).
 MJMINVAL = 1e-15
@@ -53,9 +52,6 @@ DENSITY_RANGE = (100.0, 25_000.0)
 # would turn like a flywheel. A massless frame gets the zero tensor, as a point has; MuJoCo
 # accepts it where another link of the body brings the inertia.
 FRAME_DENSITY = 1000.0
-# The density the fix of a massless moving link proposes: aluminium 6061, the most common
-# material of machined robot parts; the fix names steel's and ABS's beside it.
-PROPOSED_DENSITY = 2700
 
 # A tensor MuJoCo refuses on a link with geometry belongs to a real part, unless it is
 # absurd for the link's mass. No body of mass m can have a principal moment above m D^2,
@@ -201,7 +197,7 @@ def check(ctx) -> None:
                         f'"{tree.joint_name(name)}") but has no <inertial> and no collision '
                         "geometry for MuJoCo to compute a mass from",
                         line=source_line(link), repair=_recompute(ctx, link),
-                        fix=_by_density(ctx, link))
+                        fix=by_density(ctx, link))
             elif tree.moves(name):
                 ctx.add("inertial-missing", f'link "{name}" moves (joint '
                         f'"{tree.joint_name(name)}") but has no <inertial>' + _fallback(link),
@@ -285,14 +281,14 @@ def _mass(ctx, tree: Tree, name: str, inertial: Inertial, alone: bool) -> bool:
     if mass < 0:
         ctx.add("mass-not-positive", f'link "{name}" has a negative mass, {mass:g} kg',
                 line=line, repair=_recompute(ctx, ctx.links[name]),
-                fix=_by_density(ctx, ctx.links[name]))
+                fix=by_density(ctx, ctx.links[name]))
         return False
     if mass <= MJMINVAL:
         if alone:
             ctx.add("mass-not-positive", f'link "{name}" moves (joint '
                     f'"{tree.joint_name(name)}") but its mass is {mass:g} kg, and no link '
                     "fixed to it has mass", line=line, repair=_recompute(ctx, ctx.links[name]),
-                    fix=_by_density(ctx, ctx.links[name]))
+                    fix=by_density(ctx, ctx.links[name]))
         return False
     if mass < TINY_MASS and tree.body(name) is not None:
         ctx.add("mass-tiny", f'link "{name}" moves but weighs {mass:.3g} kg, less than a '
@@ -314,7 +310,7 @@ def _tensor(ctx, tree: Tree, link, inertial: Inertial, alone: bool) -> None:
         if alone:
             ctx.add("inertia-not-positive-definite", f'link "{name}" moves but all six terms '
                     "of its inertia are zero, and no link fixed to it has inertia", line=line,
-                    fix=_by_density(ctx, link) or
+                    fix=by_density(ctx, link) or
                     "write the part's inertia tensor from SolidWorks' Mass Properties; "
                     "for a small part, that of a solid box of its size will do",
                     repair=_recompute(ctx, link))
@@ -389,11 +385,11 @@ def _placeholder_tensor(ctx, tree: Tree, link, inertial: Inertial, largest: floa
     mass, element = inertial.mass, inertial.element.find("inertia")
     if mass is None or mass <= MJMINVAL or element is None:
         return None   # mass-not-positive, inertial-incomplete: the mass is in doubt
-    size = _model_size(ctx, tree)
+    size = model_size(ctx, tree)
     bound = mass * size ** 2
     if not largest > PLACEHOLDER_MARGIN * bound:
         return None
-    solid = _solid_of(ctx, link)
+    solid = solid_of(ctx, link)
     if solid is None:
         return None
     kind, closed, volume, tensor = solid
@@ -410,84 +406,6 @@ def _placeholder_tensor(ctx, tree: Tree, link, inertial: Inertial, largest: floa
                   f"of {what} as a uniform solid of that mass, principal moments "
                   f"{', '.join(f'{m:.3g}' for m in moments)} kg m^2",
                   (element, write_tensor(written)))
-
-
-def _solid_of(ctx, link):
-    """(kind, closed, volume, inertia tensor about its centroid at density 1, link axes) of
-    the link's collision geometry, else its visual; None when neither can be measured."""
-    for kind in ("collision", "visual"):
-        pieces = link_geometry(ctx, link, kind)
-        if pieces:
-            break
-    else:
-        return None
-    closed = all(enclosed_volume(p) is not None for p in pieces)
-    if closed:
-        triangles = np.vstack([p.mesh.triangles for p in pieces])
-    else:
-        shape = hull(np.vstack([p.mesh.vertices for p in pieces]))
-        if shape is None:
-            return None
-        triangles = shape.triangles
-    volume, _, tensor = solid_properties(triangles)
-    if not volume > 0 or not np.all(np.isfinite(tensor)):
-        return None
-    return kind, closed, volume, tensor
-
-
-def _model_size(ctx, tree: Tree) -> float:
-    """The diagonal of the box around the model at rest: every link's origin and the corners
-    of the boxes around its visual and collision geometry, in the root's frame."""
-    points = []
-    for name, link in ctx.links.items():
-        pose = tree.pose(name)
-        if pose is None:
-            continue
-        points.append(pose[:3, 3])
-        for kind in ("visual", "collision"):
-            for piece in link_geometry(ctx, link, kind) or ():
-                low, high = corners(piece.mesh.vertices)
-                box = np.array([[x, y, z] for x in (low[0], high[0]) for y in (low[1], high[1])
-                                for z in (low[2], high[2])])
-                points.extend(box @ pose[:3, :3].T + pose[:3, 3])
-    if not points:
-        return 0.0
-    low, high = corners(np.array(points))
-    return float(np.linalg.norm(high - low))
-
-
-def _by_density(ctx, link) -> str | None:
-    """The fix for a link whose mass or inertia convert can compute from its geometry with
-    --density: the exact command that converts the package so, with the path the user gave.
-    None when the link has no geometry to compute from, or the command would change nothing
-    (--density given already, or --strict)."""
-    if ctx.options.density is not None or ctx.options.strict:
-        return None
-    if not any(link_geometry(ctx, link, kind) for kind in ("collision", "visual")):
-        return None
-    return (f"`{convert_command(ctx)}` converts the package with the mass, centre of mass and "
-            "inertia of every such link computed from its meshes as a solid of aluminium 6061 "
-            f"({PROPOSED_DENSITY} kg/m^3; steel: 7850, ABS: 1040: give your material's); or "
-            "give the link its real mass (SolidWorks: Mass Properties) and export again")
-
-
-def convert_command(ctx, density: float = PROPOSED_DENSITY) -> str:
-    """`sw2sim convert PKG -o PKG_mujoco --density ...` for the package as the user named it
-    (a folder, a .urdf or a .zip), ready to paste into a shell; under `sw2sim convert`, the
-    user's own command with --density added."""
-    if ctx.options.command:
-        return shlex.join([*ctx.options.command, "--density", f"{density:g}"])
-    given = Path(ctx.path)
-    if given.suffix.lower() == ".zip":
-        base = given.with_suffix("")
-    else:
-        base = given if given.is_dir() else Path(display(ctx.package.root))
-    if base.name in ("", ".", ".."):   # the package is the working folder: write beside it
-        base = base / ".." / base.resolve().name
-    words = ["sw2sim", "convert", str(given), "-o", f"{base}_mujoco"]
-    if ctx.package.other_urdfs:
-        words += ["--urdf", (ctx.package.expanded_from or ctx.package.urdf).name]
-    return shlex.join(words + ["--density", f"{density:g}"])
 
 
 def _recompute(ctx, link):
