@@ -232,6 +232,76 @@
     window.addEventListener("resize", markAll);
   }
 
+  // ---- Code that scrolls shows it, and can wrap instead ---------------------------
+  // A code block with a line longer than its box scrolls sideways (main.css, "Code that
+  // scrolls"): a shadow marks each edge beyond which more of it lies, and a Wrap button in
+  // its header wraps the long lines of every code block instead. The choice is kept for
+  // the whole site (localStorage) and the button shows on the blocks that need it.
+  var WRAP_KEY = "sw2sim-code-wrap";
+
+  function storedWrap() {
+    try {
+      return window.localStorage.getItem(WRAP_KEY) === "1";
+    } catch (error) {
+      return false; // storage refused (private browsing, file://): no memory, still works
+    }
+  }
+
+  function storeWrap(on) {
+    try {
+      if (on) window.localStorage.setItem(WRAP_KEY, "1");
+      else window.localStorage.removeItem(WRAP_KEY);
+    } catch (error) { /* not kept: the page still wraps */ }
+  }
+
+  function setUpCodeScrolling() {
+    var pres = Array.prototype.filter.call(document.querySelectorAll(".page-body div.highlighter-rouge pre"),
+      function (pre) { return !pre.closest(".language-text"); });
+    if (!pres.length) return;
+    var root = document.documentElement;
+    var buttons = [];
+
+    function mark(pre) {
+      var block = pre.closest("div.highlighter-rouge");
+      var hidden = pre.scrollWidth - pre.clientWidth;
+      block.classList.toggle("more-left", hidden > 1 && pre.scrollLeft > 1);
+      block.classList.toggle("more-right", hidden > 1 && pre.scrollLeft < hidden - 1);
+    }
+    function markAll() { pres.forEach(mark); }
+
+    function setWrap(on) {
+      root.classList.toggle("code-wrap", on);
+      buttons.forEach(function (button) { button.setAttribute("aria-pressed", on ? "true" : "false"); });
+      markAll();
+    }
+
+    // Which blocks have a line too long for their box: measured with the lines kept.
+    var wrapped = storedWrap();
+    root.classList.remove("code-wrap");
+    pres.forEach(function (pre) {
+      pre.addEventListener("scroll", function () { mark(pre); }, { passive: true });
+      if (pre.scrollWidth - pre.clientWidth <= 1) return;
+      var header = pre.closest("div.highlighter-rouge").querySelector(".code-header");
+      if (!header) return;
+      var button = document.createElement("button");
+      button.type = "button";
+      button.className = "wrap-button";
+      button.textContent = "Wrap";
+      button.title = "Wrap long lines in every code block (remembered on this site)";
+      button.addEventListener("click", function () {
+        var on = !root.classList.contains("code-wrap");
+        storeWrap(on);
+        setWrap(on);
+      });
+      var copy = header.querySelector(".copy-button");
+      header.insertBefore(button, copy);
+      buttons.push(button);
+    });
+    setWrap(wrapped);
+    if (document.fonts) document.fonts.ready.then(markAll);
+    window.addEventListener("resize", markAll);
+  }
+
   // ---- Tables that scroll show which way: more-left / more-right -------------------
   // A table wider than its box (_plugins/tables.rb) gets a shadow at each edge beyond
   // which more of it lies (.table-box in main.css); with its first column pinned, the
@@ -264,6 +334,7 @@
   function start() {
     setUpMenu();
     addCopyButtons();
+    setUpCodeScrolling();
     addHeadingLinks();
     setUpLightbox();
     letWideFormulasScroll();
