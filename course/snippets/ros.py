@@ -37,6 +37,10 @@ there, in that folder and shell.
   waits for Gazebo to come up.
 - A command that opens a window (`rqt_plot`, `rviz`, a launch file that starts RViz) is
   not run; it is reported.
+- `sw2sim plot` (rqt_plot's stand-in) without `--duration` keeps running and keeps its
+  terminal busy, as in the reader's terminal; with no display here it draws into a PNG.
+  At the end it must have plotted, and Ctrl-C must end it with status 0 and the PNG
+  written. With `--duration` it is a command that ends.
 
 A ```python block is a node file of the package (`data-file`): the page's commands start
 it. At the end every node the page shows must be running, what keeps running must still
@@ -113,7 +117,14 @@ class Command:
             return True
         if w[:2] in (["rostopic", "echo"], ["rostopic", "hz"]):
             return True
+        if self.plots:
+            return "--duration" not in w
         return w[:2] == ["rostopic", "pub"] and not {"-1", "--once"} & set(w)
+
+    @property
+    def plots(self) -> bool:
+        """`sw2sim plot`, which the pages give beside rqt_plot."""
+        return self.words[:2] == ["sw2sim", "plot"]
 
 
     @property
@@ -184,10 +195,13 @@ class Session:
     master_uri: str
     ran: list[str] = field(default_factory=list)
     windows: list[str] = field(default_factory=list)   # "page.md:line: command" not run
+    plot_pngs: list[Path] = field(default_factory=list)   # what `sw2sim plot` drew
     running: list[Running] = field(default_factory=list)
     nodes: list[Block] = field(default_factory=list)
     stopped: list[int] = field(default_factory=list)   # every process id it has stopped
     terminals: dict[int, Terminal] = field(default_factory=dict)
+    # What each command that ended printed (standard output, then error), by page.md:line.
+    printed: dict[str, str] = field(default_factory=dict)
     # Called with each command about to be typed, before anything of it (the Ctrl-C of
     # its block included) happens: a test's observer starts or ends listening there.
     before_command: Callable[[Command], None] | None = None
@@ -351,6 +365,7 @@ class Session:
         except subprocess.TimeoutExpired:
             raise RosBlockError(command.location, f"`{command.text}` did not end within "
                                                   f"{COMMAND_TIMEOUT:g} s") from None
+        self.printed[command.location] = ended.done.stdout + ended.done.stderr
         allowed = (0, 1) if command.program == "grep" else (0,)
         if ended.done.returncode not in allowed:
             raise RosBlockError(command.location,
@@ -482,6 +497,31 @@ class Session:
                 if not r.log.stat().st_size:
                     raise RosBlockError(r.command.location, f"`{r.command.text}` printed nothing "
                                                             f"in {COMMAND_TIMEOUT:g} s")
+        for r in [r for r in self.running if r.command.plots]:
+            self.plotted(r)
+
+    def plotted(self, r: Running) -> None:
+        """A `sw2sim plot` that keeps running has plotted; the reader's Ctrl-C ends it with
+        status 0, and the PNG it names is written (`plot_pngs` lists them)."""
+        deadline = time.monotonic() + COMMAND_TIMEOUT
+        while "sw2sim plot: plotting" not in _tail(r.log) and time.monotonic() < deadline:
+            if r.process.poll() is not None:
+                break
+            time.sleep(0.1)
+        if "sw2sim plot: plotting" not in _tail(r.log):
+            raise RosBlockError(r.command.location, f"`{r.command.text}` plotted nothing in "
+                                                    f"{COMMAND_TIMEOUT:g} s:\n{_tail(r.log)}")
+        self._stop(r)
+        self.running.remove(r)
+        for t in self.terminals.values():
+            if t.busy is r:
+                t.busy = None
+        written = re.search(r"sw2sim plot: wrote (\S+\.png)", _tail(r.log))
+        if r.process.returncode != 0 or not written:
+            raise RosBlockError(r.command.location, f"`{r.command.text}` did not end with its "
+                                                    f"PNG on Ctrl-C (status {r.process.returncode}):"
+                                                    f"\n{_tail(r.log)}")
+        self.plot_pngs.append(self.place(r.command.package) / written[1])
 
     def stop_launches(self) -> None:
         launches = [r for r in self.running if r.command.words[0] == "roslaunch"]

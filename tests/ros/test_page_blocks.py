@@ -334,6 +334,57 @@ class Recorders:
                 process.communicate()
 
 
+KDL_WARNING = "has an inertia specified in the URDF, but KDL does not support a root link"
+
+
+def _log_lines_said(session, page) -> None:
+    """What the reader meets in the page's terminals and cannot place is said on the page:
+    KDL's warning about the root link's inertia where a launch prints it, and what a
+    `grep` of the log printed (nothing, on a clean run)."""
+    text = flat_page(page.path.removeprefix("_pages/"))
+    for log in sorted(session.logs.glob("*.log")):
+        if KDL_WARNING in log.read_text(errors="replace"):
+            assert KDL_WARNING.split(",")[0] in text and "kdl-root-inertia" in text, (
+                f"{page.path}: a launch prints KDL's warning ({log.name}); say on the page what "
+                f"it means (the root link's <inertial>), citing kdl-root-inertia")
+    for location, output in session.printed.items():
+        line = int(location.rsplit(":", 1)[1])
+        block = next((b for b in page.ros_blocks if b.line <= line <= b.line +
+                      b.code.count("\n")), None)
+        if block and block.code.lstrip().startswith("grep") and not output.strip():
+            assert "`grep` prints nothing" in text, (
+                f"{location}: the grep of the log printed nothing on this clean run; the page "
+                "should say so (`grep` prints nothing)")
+
+
+def _pub_once_said(page) -> None:
+    """A page that sends with `rostopic pub -1` says that it returns only after holding
+    the message latched for rostopic's 3 s (_ONCE_DELAY), not at once."""
+    import rostopic
+    if not any("rostopic pub -1" in b.code for b in page.ros_blocks):
+        return
+    text = flat_page(page.path.removeprefix("_pages/"))
+    said = re.search(r"latched for (\d+) s", text)
+    assert said and float(said[1]) == rostopic._ONCE_DELAY, (
+        f"{page.path}: `rostopic pub -1` returns after {rostopic._ONCE_DELAY:g} s; say "
+        "'latched for 3 s'")
+    assert not re.search(r"sends (the message|one position) (once )?and returns", text), page.path
+
+
+def test_apt_lines_of_the_ros_pages_name_the_distribution_they_are_for():
+    """Debian 12 packages no ros-noetic-* (nor ros_control, nor Gazebo): an apt line with
+    those names on a ROS 1 page is introduced as Ubuntu's and Noetic's."""
+    for path in PAGES:
+        page = parse_page(path, ROOT)
+        lines = path.read_text(encoding="utf-8").splitlines()
+        for block in page.blocks:
+            if "apt install ros-noetic-" in block.code:
+                before = " ".join(lines[max(0, block.line - 4):block.line - 1])
+                assert "Ubuntu" in before and "Noetic" in before, (
+                    f"{page.path}:{block.line}: ros-noetic-* packages are Ubuntu's, for ROS "
+                    "Noetic; say so before the block (Debian 12 has none of them)")
+
+
 @pytest.mark.parametrize("path", PAGES, ids=lambda p: p.relative_to(ROOT).as_posix())
 def test_page_ros_blocks(path, ros, tmp_path, record_property):
     page = parse_page(path, ROOT)
@@ -355,6 +406,8 @@ def test_page_ros_blocks(path, ros, tmp_path, record_property):
             session.check()   # (which waits for every `rostopic echo` to print)
             for claim in claims:
                 claim.check(recorders.records[claim], session)
+            _log_lines_said(session, page)
+            _pub_once_said(page)
         except RosBlockError as error:
             fault = str(error)
         finally:
