@@ -8,6 +8,15 @@ in `config/*.yaml`. From those:
   kp is the controller's p and kv its d, the control range is the joint's limits;
 - an `effort_controllers/JointVelocityController` becomes a *velocity* actuator with
   kv the controller's p, its control range the joint's velocity limit;
+- a `velocity_controllers/JointVelocityController` (or each joint of a
+  `JointGroupVelocityController`) forwards its command to the joint's velocity interface,
+  which gazebo_ros_control turns into a velocity servo that Gazebo drives within the effort
+  limit (`SetParam("vel")` with `fmax`, default_robot_hw_sim.cpp): a *velocity* actuator
+  with a stiff kv (SERVO_STIFFNESS);
+- a `velocity_controllers/JointPositionController` runs a PID on the position error and
+  sends its output as that velocity command (ros_controllers 0.21.2,
+  velocity_controllers/src/joint_position_controller.cpp): with the servo's K, the force
+  K (p (target - q) - d v - v) is a *position* actuator with kp = K p and kv = K (1 + d);
 - a transmission without such a controller becomes a *motor* whose control is the
   actuator's effort, geared by the mechanical reduction (as `ros_control.add_motors`);
 - each actuator's force is limited to the joint's effort limit.
@@ -32,6 +41,14 @@ from .ros_control import read_controllers, read_joint_limits, read_transmissions
 
 POSITION_PID = "effort_controllers/JointPositionController"
 VELOCITY_PID = "effort_controllers/JointVelocityController"
+VELOCITY_FORWARD = ("velocity_controllers/JointVelocityController",
+                    "velocity_controllers/JointGroupVelocityController")
+POSITION_TO_VELOCITY = "velocity_controllers/JointPositionController"
+KINDS = (POSITION_PID, VELOCITY_PID, *VELOCITY_FORWARD, POSITION_TO_VELOCITY)
+# The velocity servo's K, in joint inertias per time step: Gazebo's joint motor reaches the
+# commanded velocity within a step when the effort limit allows; MuJoCo's implicit damping
+# with this K reaches 10/11 of it in one.
+SERVO_STIFFNESS = 10.0
 SLIDER_HZ = 2.0           # natural frequency of a viewer-only position actuator
 SLIDER_TIME = 0.1         # s, time constant of a viewer-only velocity actuator
 SLIDER_SPEED = 2 * math.pi  # rad/s or m/s, a velocity slider's range when the URDF gives none
@@ -75,7 +92,15 @@ def controllers(source: str | os.PathLike | Package) -> dict[str, tuple[dict, Pa
 
 
 def _is_controller(value) -> bool:
-    return isinstance(value, dict) and "type" in value and isinstance(value.get("joint"), str)
+    return isinstance(value, dict) and "type" in value and (
+        isinstance(value.get("joint"), str) or isinstance(value.get("joints"), list))
+
+
+def _joints_of(settings: dict) -> list[str]:
+    """The joint a controller drives, or each of a group controller's joints."""
+    if isinstance(settings.get("joint"), str):
+        return [settings["joint"]]
+    return [str(j) for j in settings.get("joints", ()) if isinstance(j, (str, int))]
 
 
 def _gain(pid, key: str) -> float | None:
@@ -141,28 +166,32 @@ def add_actuators(spec: mujoco.MjSpec, source: str | os.PathLike | Package, *,
         added.append(Actuator(name, joint, kind, source, words, ctrl, force, tuple(dropped)))
         driven.add(joint)
 
-    for name, (settings, file) in controllers(package).items():
-        joint, kind = settings["joint"], settings.get("type")
-        where = file.relative_to(root).as_posix()
+    def _from_controller(name, joint, settings, where):
+        kind = settings.get("type")
         pid = settings.get("pid")
         p, i, d = _gain(pid, "p"), _gain(pid, "i"), _gain(pid, "d")
         if joint in leave:
             skipped.append(f"{name} in {where}: joint {joint!r} is left without an actuator "
                            "(its limits are the exporter's empty ones; see Repairs)")
-            continue
+            return
         if joint not in joints:
             skipped.append(f"{name} in {where}: the model has no hinge or slide joint {joint!r}")
-            continue
+            return
         if joint in driven:
             skipped.append(f"{name} in {where}: joint {joint!r} already has an actuator")
-            continue
-        if kind not in (POSITION_PID, VELOCITY_PID):
+            return
+        if kind not in KINDS:
             skipped.append(f"{name} in {where}: type {kind} has no MuJoCo counterpart here")
-            continue
+            return
+        source = f"{name} ({kind}) in {where}"
+        servo = SERVO_STIFFNESS * max(inertia[joints[joint]], 1e-9) / dt
+        if kind in VELOCITY_FORWARD:   # no PID: the command is the velocity
+            place(name, joint, "velocity", source, {"kv": servo}, velocity(joint),
+                  effort(joint))
+            return
         if p is None or p <= 0:
             skipped.append(f"{name} in {where}: its pid has no positive p")
-            continue
-        source = f"{name} ({kind}) in {where}"
+            return
         dropped = []
         if i:
             dropped.append(f"i {i:g}")
@@ -172,10 +201,21 @@ def add_actuators(spec: mujoco.MjSpec, source: str | os.PathLike | Package, *,
             gains = {"kp": p} | ({"kv": d} if d and d > 0 else {})
             place(name, joint, "position", source, gains, joint_range(joint), effort(joint),
                   dropped)
+        elif kind == POSITION_TO_VELOCITY:
+            gains = {"kp": servo * p, "kv": servo * (1 + (d if d and d > 0 else 0))}
+            place(name, joint, "position", source, gains, joint_range(joint), effort(joint),
+                  dropped)
         else:
             dropped += [f"d {d:g}"] if d else []
             place(name, joint, "velocity", source, {"kv": p}, velocity(joint), effort(joint),
                   dropped)
+
+    dt = model.opt.timestep
+    for group, (settings, file) in controllers(package).items():
+        named = _joints_of(settings)
+        for joint in named:
+            name = group if len(named) == 1 else f"{group}_{joint}"
+            _from_controller(name, joint, settings, file.relative_to(root).as_posix())
 
     for t in read_transmissions(package):
         if t.joint in driven:

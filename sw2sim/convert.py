@@ -258,6 +258,12 @@ def readme(result: Conversion, package: Package) -> str:
             "is. MuJoCo computes it inside the step, and its `implicitfast` integrator treats "
             "the kv term implicitly, so strong damping stays stable. A "
             "`JointVelocityController` became a velocity actuator in the same way (kv = p). "
+            "On the velocity interface, Gazebo drives the joint to the commanded velocity "
+            "within its effort limit: a `velocity_controllers/JointVelocityController` became "
+            "a velocity actuator with a stiff kv (K, ten times the joint's inertia per time "
+            "step), and a `velocity_controllers/JointPositionController`, whose PID turns the "
+            "position error into that velocity, a position actuator with kp = K p and "
+            "kv = K (1 + d). "
             "A transmission without a controller became a motor, whose control is the effort "
             "itself, geared by the transmission's mechanical reduction.", ""]
     out += _repairs_section(result, package)

@@ -121,6 +121,60 @@ def test_the_vehicle_is_free_and_rests_on_the_floor(converted):
     assert abs(data.qpos[2] - start) < 0.005, "settles by at most a few millimetres"
 
 
+def _velocity_interface_arm(folder: Path, yaml: str) -> Path:
+    """Practice 3's arm with its controllers on the velocity interface, as arms driven by
+    velocity-controlled servos are configured."""
+    from packages import copy_example
+    package = copy_example(3, folder)
+    (package / "config" / "controllers.yaml").write_text(yaml)
+    for other in (package / "config").glob("*.yaml"):
+        if other.name != "controllers.yaml" and "type:" in other.read_text():
+            other.unlink()
+    return package
+
+
+def test_velocity_controllers_become_a_servo_on_position_and_one_on_velocity(tmp_path):
+    package = _velocity_interface_arm(tmp_path, """example_3:
+  middle_arm_controller:
+    type: velocity_controllers/JointPositionController
+    joint: middle_arm_joint
+    pid: {p: 5.0, i: 0.0, d: 0.0}
+  end_arm_controller:
+    type: velocity_controllers/JointVelocityController
+    joint: end_arm_joint
+""")
+    result = convert(package, tmp_path / "out")
+    kinds = {a.name: (a.kind, a.source) for a in result.actuators}
+    assert kinds["middle_arm_controller"][0] == "position"
+    assert kinds["end_arm_controller"][0] == "velocity"
+    assert "velocity_controllers/JointPositionController" in kinds["middle_arm_controller"][1]
+    assert not result.skipped, result.skipped
+    model = mujoco.MjModel.from_xml_path(str(tmp_path / "out" / "scene.xml"))
+    position = model.actuator("middle_arm_controller")
+    # kp = K p, kv = K: the velocity command p (target - q) followed by a stiff servo K
+    assert -position.biasprm[1] == pytest.approx(5 * -position.biasprm[2], rel=1e-5)
+    data = mujoco.MjData(model)
+    data.ctrl[position.id] = 0.3
+    data.ctrl[model.actuator("end_arm_controller").id] = 0.5
+    mujoco.mj_step(model, data, nstep=round(0.2 / model.opt.timestep))
+    # the position error closes as exp(-p t), from 0.3 to 0.3 e^-1 after 0.2 s
+    assert data.joint("middle_arm_joint").qpos[0] == pytest.approx(0.3 * (1 - 1 / 2.718),
+                                                                  abs=0.02)
+    assert data.joint("end_arm_joint").qvel[0] == pytest.approx(0.5, abs=0.01)
+
+
+def test_a_group_velocity_controller_drives_each_of_its_joints(tmp_path):
+    package = _velocity_interface_arm(tmp_path, """example_3:
+  arm_controller:
+    type: velocity_controllers/JointGroupVelocityController
+    joints: [middle_arm_joint, end_arm_joint]
+""")
+    result = convert(package, tmp_path / "out")
+    assert [(a.name, a.joint, a.kind) for a in result.actuators] == [
+        ("arm_controller_middle_arm_joint", "middle_arm_joint", "velocity"),
+        ("arm_controller_end_arm_joint", "end_arm_joint", "velocity")]
+
+
 def test_the_readme_says_what_came_from_where_and_what_changed(converted):
     text = (converted[4] / "README.md").read_text()
     for claim in ("`block_controller`", "kp 2000, kv 200", "i 500", "i_clamp 50",
