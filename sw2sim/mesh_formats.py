@@ -5,7 +5,7 @@ its compile with "no decoder found for mesh file". Packages made for RViz and Ga
 name such files, and many of them carry a readable copy beside each one (`base.dae` and
 `base.STL`, the visual and the collision shape). `stand_in` says what MuJoCo reads instead:
 that copy when there is one, else the file converted to binary STL in memory (COLLADA in its
-common simple form by sw2sim.check.collada_reader, anything else by trimesh, which reads COLLADA
+common simple form by sw2sim.collada_reader, anything else by trimesh, which reads COLLADA
 through pycollada). The loader uses it, and `sw2sim check` reports the same choice as
 convert's repair, so that the check and the model can never disagree.
 
@@ -97,13 +97,13 @@ def stl_bytes(path: Path) -> bytes:
     file's <unit meter="..."> is applied too: it says how long one of the file's units is,
     and a URDF's lengths are metres. Raises Unconvertible with the reason.
 
-    COLLADA in its common simple form is read by sw2sim.check.collada_reader, without importing
+    COLLADA in its common simple form is read by sw2sim.collada_reader, without importing
     trimesh, and written here: the same bytes as trimesh's export of what it reads (an
     80-byte header of zeros, each face's unit normal from its corners, zero for a face of
     no area; tests/tool/check/test_collada_reader.py compares them). A COLLADA document
     that declares a DOCTYPE is not read at all; any other file goes to trimesh."""
     if path.suffix.lower() == ".dae":
-        from .check.collada_reader import NotSimple, Refused, read_collada
+        from .collada_reader import NotSimple, Refused, read_collada
         try:
             vertices, faces = read_collada(path.read_bytes())
         except Refused as exc:

@@ -4,7 +4,7 @@
 the scientific stack behind it) takes seconds. The checks only need vertices and faces,
 moved, scaled and merged; the primitives of URDF as closed meshes; and the simple formats
 exporters write: binary STL (the SolidWorks exporter's), text STL, OBJ of triangles and
-COLLADA of triangles (sw2sim/check/collada_reader.py). `read` decodes those here, and hands
+COLLADA of triangles (sw2sim/collada_reader.py). `read` decodes those here, and hands
 anything else (PLY, glTF, an OBJ of quads, materials or negative indices, COLLADA with
 quads or instanced nodes, a file these readers do not fully understand) to trimesh,
 imported only then. What the readers here accept, trimesh reads to the same triangles
@@ -264,9 +264,9 @@ def _corner_columns(faces: bytes, count: int) -> tuple[bytes, ...]:
 
 
 def _dae(data: bytes) -> Mesh | None:
-    """COLLADA in its common simple form (sw2sim/check/collada_reader.py); a document that declares
+    """COLLADA in its common simple form (sw2sim/collada_reader.py); a document that declares
     a DOCTYPE is refused (None: no mesh), not handed to trimesh."""
-    from . import collada_reader
+    from .. import collada_reader
     try:
         vertices, faces = collada_reader.read_collada(data)
     except collada_reader.NotSimple:

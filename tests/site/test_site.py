@@ -166,12 +166,13 @@ def test_layout_of_every_page(site, sources):
 
 
 def test_footer_and_edit_links_on_every_page(site, sources):
-    """Every page, the 404 page too, links to the course repository and the exporter in
-    its footer, and every page but the 404 page to its own source file in the repository
-    ("Edit this page")."""
+    """Every page, the 404 page too, links to the exporter in its footer, and, when the
+    build knows the course's repository (this clone's GitHub remote: _config.yml says
+    `auto`), to that repository, and every page but the 404 page to its own source file
+    there ("Edit this page"); a clone without a GitHub remote gets neither."""
     config = yaml.safe_load((ROOT / "_config.yml").read_text(encoding="utf-8"))
-    repository, branch = config["repository"], config["repository_branch"]
-    assert re.fullmatch(r"[\w.-]+/[\w.-]+", repository), f"repository: {repository!r} is not owner/name"
+    assert config["repository"] == "auto" and config["repository_branch"] == "auto", config
+    repository, branch = clone_repository(ROOT)
     sources_by_url = {front["permalink"]: path for path, front in sources["pages"].items() if front}
     sources_by_url["/404.html"] = "404.html"
     problems = []
@@ -179,19 +180,37 @@ def test_footer_and_edit_links_on_every_page(site, sources):
         assert (ROOT / source).is_file()
         page = built_page(site, url).read_text(encoding="utf-8")
         footer = between(page, '<footer class="site-footer">', "</footer>")
-        for wanted in (f"https://github.com/{repository}", EXPORTER):
-            if f'href="{wanted}"' not in footer:
-                problems.append(f"{url}: no link to {wanted} in the footer")
+        if f'href="{EXPORTER}"' not in footer:
+            problems.append(f"{url}: no link to {EXPORTER} in the footer")
+        linked = re.findall(r'href="(https://github\.com/[^"]+)">The course repository', footer)
+        if linked != ([f"https://github.com/{repository}"] if repository else []):
+            problems.append(f"{url}: the footer links the course repository as {linked}, "
+                            f"this clone's is {repository or 'none'}")
         edit = re.findall(r'<p class="page-edit"><a href="([^"]+)">Edit this page', page)
-        wanted = [] if url == "/404.html" else [f"https://github.com/{repository}/edit/{branch}/{source}"]
+        wanted = [] if url == "/404.html" or not repository else \
+            [f"https://github.com/{repository}/edit/{branch}/{source}"]
         if edit != wanted:
             problems.append(f"{url}: edit links {edit}, expected {wanted}")
     assert not problems, "\n".join(problems)
 
 
+def clone_repository(folder: Path) -> tuple[str, str]:
+    """owner/name of the clone's GitHub remote (origin, else the first) or "", and the
+    branch checked out or main: what _plugins/repository.rb finds for `auto`."""
+    def git(*args: str) -> str:
+        result = subprocess.run(["git", "-C", str(folder), *args], capture_output=True, text=True)
+        return result.stdout.strip() if result.returncode == 0 else ""
+    remotes = git("remote").split()
+    name = "origin" if "origin" in remotes else (remotes[0] if remotes else "")
+    url = git("remote", "get-url", name) if name else ""
+    found = re.fullmatch(r"(?:https?://(?:[^@/]+@)?github\.com/|git@github\.com:|ssh://git@github\.com/)"
+                         r"([\w.-]+/[\w.-]+?)(?:\.git)?/?", url)
+    return (found[1] if found else ""), (git("symbolic-ref", "--quiet", "--short", "HEAD") or "main")
+
+
 def test_the_pages_workflow_names_the_repository_it_builds():
-    """_config.yml holds a placeholder; the published site links to the real repository
-    and branch, which the Pages workflow passes to Jekyll in its extra config file."""
+    """The published site links to the repository and branch the Pages workflow builds,
+    which it passes to Jekyll in its extra config file over _config.yml's `auto`."""
     workflow = yaml.safe_load(WORKFLOWS[0].read_text(encoding="utf-8"))
     [build] = [step for step in workflow["jobs"]["build"]["steps"]
                if "jekyll build" in step.get("run", "")]

@@ -79,3 +79,16 @@ def test_only_xmlsafe_parses_xml():
 
 def test_no_module_is_long_unless_it_says_why():
     assert not long_modules_unsaid(TOOL), "\n".join(long_modules_unsaid(TOOL))
+
+
+# The modules below the check: reading packages and meshes. They serve the check, convert
+# and the loader alike, so nothing in them may reach up into sw2sim.check.
+BELOW_THE_CHECK = ("sw2sim.mesh_formats", "sw2sim.collada_reader", "sw2sim.mesh_paths",
+                   "sw2sim.package", "sw2sim.loader", "sw2sim.xmlsafe", "sw2sim.xacro_lines")
+
+
+def test_the_mesh_and_package_readers_import_nothing_from_the_check():
+    offenders = {module: sorted(n for n in imported(TOOL, module)
+                                if n.startswith("sw2sim.check"))
+                 for module in BELOW_THE_CHECK}
+    assert not any(offenders.values()), offenders

@@ -1,4 +1,4 @@
-"""The check's COLLADA reader (sw2sim/check/collada_reader.py) against trimesh, which reads what it
+"""The check's COLLADA reader (sw2sim/collada_reader.py) against trimesh, which reads what it
 leaves: the simple form Blender, MeshLab, SketchUp and trimesh write must come out as
 trimesh reads it (`trimesh.load(path, force="mesh", process=False)`, in metres), triangle for
 triangle and number for number, and stl_bytes must write what trimesh's export wrote; what
@@ -25,7 +25,8 @@ import trimesh
 from mesh_parts import part as _part
 from lxml import etree
 
-from sw2sim.check import collada_reader as collada, trimeshes
+from sw2sim import collada_reader as collada
+from sw2sim.check import trimeshes
 from sw2sim.mesh_formats import Unconvertible, in_metres, stl_bytes
 
 NS = "http://www.collada.org/2005/11/COLLADASchema"
@@ -408,7 +409,7 @@ def test_a_file_of_no_triangles_is_no_mesh(tmp_path, registered):
 def test_neither_reader_nor_stl_bytes_imports_trimesh(tmp_path):
     path = tmp_path / "part.dae"
     path.write_bytes(_nested())
-    probe = ("import sys; from pathlib import Path; from sw2sim.check.collada_reader import read_collada\n"
+    probe = ("import sys; from pathlib import Path; from sw2sim.collada_reader import read_collada\n"
              "from sw2sim.mesh_formats import stl_bytes\n"
              f"path = Path({str(path)!r}); read_collada(path.read_bytes()); stl_bytes(path)\n"
              "print(sorted({m.split('.')[0] for m in sys.modules}"

@@ -33,7 +33,7 @@ from __future__ import annotations
 import numpy as np
 from lxml import etree
 
-from .. import xmlsafe
+from . import xmlsafe
 
 NAMESPACE = "http://www.collada.org/2005/11/COLLADASchema"   # COLLADA 1.4, what all write
 
