@@ -203,8 +203,8 @@ class Context:
             # Files with the same bytes (the exporter writes one per link: four wheels, four
             # files) are read once, and share one Mesh: measured and merged once too.
             key = self._contents[path] = content_key(path)
-            if key not in self._by_content:
-                self._by_content[key] = _read_mesh(path)
+            if key not in self._by_content:   # the bytes just read: not read again
+                self._by_content[key] = _read_mesh(path, key if isinstance(key, bytes) else None)
             self._meshes[path] = self._by_content[key]
         loaded = self._meshes[path]
         if loaded is None:
@@ -253,9 +253,9 @@ def in_folder_given(filename: str, name: str) -> str:
     return filename
 
 
-def _read_mesh(path: Path):
+def _read_mesh(path: Path, data: bytes | None):
     from .trimeshes import read
-    return read(path)
+    return read(path, data)
 
 
 def display(path: str | os.PathLike) -> str:

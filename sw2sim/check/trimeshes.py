@@ -89,15 +89,16 @@ class _NotSimple(Exception):
     """The file is not in the simple form the readers here understand: trimesh reads it."""
 
 
-def read(path: str | Path) -> Mesh | None:
-    """The mesh in a file, unmerged, or None when it holds no triangles or cannot be read."""
+def read(path: str | Path, data: bytes | None = None) -> Mesh | None:
+    """The mesh in a file, unmerged, or None when it holds no triangles or cannot be read;
+    `data` is the file's bytes when the caller has read them already."""
     path = Path(path)
     reader = _READERS.get(path.suffix.lower())
     if reader is None:
         mesh = _with_trimesh(path)
     else:
         try:
-            mesh = reader(path.read_bytes())
+            mesh = reader(path.read_bytes() if data is None else data)
         except OSError:
             return None
         except _NotSimple:

@@ -207,3 +207,24 @@ def test_the_obj_reader_counts_statements_as_a_search_of_the_text_does(text):
     assert counts == {key: text.count(b"\n" + key) for key in trimeshes._OBJ_STATEMENTS}
     assert lines == text.count(b"\n")
     assert empty == sum(1 for line in text.split(b"\n")[1:] if not line)
+
+
+def test_the_check_reads_each_mesh_file_once(monkeypatch):
+    """The bytes that tell files of the same content apart are the bytes the mesh is decoded
+    from: the file is not read again by name."""
+    import collections
+    import pathlib
+
+    from sw2sim.check import check
+    from repository import EXAMPLES
+    reads = collections.Counter()
+    read_bytes = pathlib.Path.read_bytes
+
+    def counted(self):
+        if self.suffix.lower() == ".stl":
+            reads[self.name] += 1
+        return read_bytes(self)
+
+    monkeypatch.setattr(pathlib.Path, "read_bytes", counted)
+    check(EXAMPLES / "example_3", stability=False)
+    assert reads and set(reads.values()) == {1}, reads
