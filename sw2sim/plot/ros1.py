@@ -75,10 +75,15 @@ class Source:
         messages.ensure()   # control_msgs and gazebo_msgs, which Debian does not ship
         self.rospy = rospy
         self.master = rosgraph.Master("/sw2sim_plot")
-        rospy.init_node("sw2sim_plot", anonymous=True, disable_signals=True)
-        # (rospy reads it once, at init_node, as here)
-        self.sim_time = bool(rospy.get_param("/use_sim_time", False))
+        self.sim_time = False
         self.subscribers = []
+
+    def _node(self) -> None:
+        """The node, started at the first subscription: by then the topics are published,
+        so a launch file has set /use_sim_time, which rospy reads once, at init_node."""
+        if not self.rospy.core.is_initialized():
+            self.rospy.init_node("sw2sim_plot", anonymous=True, disable_signals=True)
+            self.sim_time = bool(self.rospy.get_param("/use_sim_time", False))
 
     def topics(self) -> dict[str, str]:
         """The published topics and their types."""
@@ -105,6 +110,7 @@ class Source:
         return cls
 
     def subscribe(self, topic: str, kind: str, on_message) -> None:
+        self._node()
         self.subscribers.append(self.rospy.Subscriber(topic, self._class(kind), on_message,
                                                       queue_size=100))
 
@@ -124,4 +130,5 @@ class Source:
     def close(self) -> None:
         for subscriber in self.subscribers:
             subscriber.unregister()
-        self.rospy.signal_shutdown("sw2sim plot is done")
+        if self.rospy.core.is_initialized():
+            self.rospy.signal_shutdown("sw2sim plot is done")

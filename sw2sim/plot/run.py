@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import re
 import signal
+import threading
 import time
 from dataclasses import dataclass
 from pathlib import Path
@@ -75,6 +76,9 @@ def run(options: Options, say=print) -> int:
     ros = choose(options.ros, say)
     if ros is None:
         return EXIT_UNUSABLE
+    # matplotlib takes a second or more to import: while the topics are awaited, not after
+    # Ctrl-C, when the reader (or a terminal closing) waits for the PNG
+    threading.Thread(target=_import_drawing, daemon=True).start()
     live = output is None and options.live
     if output is None and not live:
         output = default_png(names)
@@ -107,6 +111,12 @@ def run(options: Options, say=print) -> int:
             recording.cut(options.duration)
         if recording is not None and recording.count():
             _write(recording, output, options.csv, options.window, label, say)
+
+
+def _import_drawing() -> None:
+    from . import drawing  # noqa: F401
+    from matplotlib.backends import backend_agg  # noqa: F401
+    from matplotlib import figure  # noqa: F401
 
 
 def _subscribed(source, names, stop, say) -> Recording | None:
