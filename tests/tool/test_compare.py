@@ -18,6 +18,7 @@ import numpy as np
 import pytest
 
 from packages import EXAMPLES, copy_example, edit, edit_re, urdf_of
+from repository import practice_numbers
 from sw2sim import cli
 from sw2sim.check.urdf import vector
 from sw2sim.compare import compare
@@ -74,14 +75,14 @@ def inertias(factor: float, link: str | None = None):
 
 # --- what must match ----------------------------------------------------------------------
 
-@pytest.mark.parametrize("n", [1, 2, 3, 4, 5])
+@pytest.mark.parametrize("n", practice_numbers())
 def test_each_reference_matches_itself(n):
     result = against(n, EXAMPLES / f"example_{n}")
     assert result.status == 0 and not result.differences, result.format()
     assert " matches " in result.format() and len(result.links) == result.counts[0]
 
 
-@pytest.mark.parametrize("n", [1, 2, 3, 4, 5])
+@pytest.mark.parametrize("n", practice_numbers())
 def test_an_exact_solidworks_export_matches_the_faceted_reference(tmp_path, n):
     result = against(n, altered(n, tmp_path, masses(1.004), inertias(1.006)))
     assert result.status == 0, result.format()

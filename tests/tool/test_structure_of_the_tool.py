@@ -3,6 +3,7 @@ other, no module imports another's private names, only sw2sim.xmlsafe parses XML
 in sw2sim/ imports the course build, and no module grows past LONG lines unsaid."""
 
 import ast
+import re
 
 from module_graph import (dependency_graph, find_cycle, imported, imports, long_modules_unsaid,
                           modules, private_imports)
@@ -92,3 +93,13 @@ def test_the_mesh_and_package_readers_import_nothing_from_the_check():
                                 if n.startswith("sw2sim.check"))
                  for module in BELOW_THE_CHECK}
     assert not any(offenders.values()), offenders
+
+
+def test_the_tool_tests_find_the_practices_as_the_course_does():
+    """A practice added to course/practices/ is tested without editing a list of numbers."""
+    from repository import ROOT
+    listed = re.compile(r"\[1, 2, 3, 4, 5\]|range\(1, 6\)")
+    found = [f"{path.relative_to(ROOT)}:{n}" for path in sorted((ROOT / "tests" / "tool").rglob("*.py"))
+             for n, line in enumerate(path.read_text(encoding="utf-8").splitlines(), 1)
+             if listed.search(line)]
+    assert not found, found

@@ -13,8 +13,9 @@ import sw2sim
 from sw2sim.convert import _asset_name, convert, file_stem
 from sw2sim.loader import world_fixed
 
-from repository import EXAMPLES
-NUMBERS = [1, 2, 3, 4, 5]
+from repository import EXAMPLES, practice_numbers
+NUMBERS = practice_numbers()
+# The actuators each practice's controllers and transmissions make.
 ACTUATORS = {1: 0, 2: 0, 3: 2, 4: 1, 5: 7}
 
 # Loads each scene.xml with nothing but mujoco, steps 1 s, and reports what it found.
@@ -86,6 +87,7 @@ def test_plain_mujoco_gets_the_same_model_and_it_runs(converted, plain, n):
     ref = reference(n)
     assert (found["nbody"], found["njnt"], found["nmesh"]) == (ref.nbody, ref.njnt, ref.nmesh)
     assert found["ngeom"] == ref.ngeom, "the robot's geoms and one floor, as load_package"
+    assert n in ACTUATORS, f"example_{n} is new: add its count of actuators to ACTUATORS"
     assert found["nu"] == ACTUATORS[n]
     assert found["finite"] and found["warnings"] == 0
 

@@ -6,6 +6,7 @@ import mujoco
 import pytest
 
 from packages import copy_example, edit_re, line_of, urdf_of
+from repository import practice_numbers
 from sw2sim.check import check, open_package
 from sw2sim.check import stability
 
@@ -65,7 +66,7 @@ def only(ctx, rule_id):
 
 # --- the examples ----------------------------------------------------------------------
 
-@pytest.mark.parametrize("n", [1, 2, 3, 4, 5])
+@pytest.mark.parametrize("n", practice_numbers())
 def test_the_examples_run_quietly_for_four_seconds(n):
     ctx, figures = run(f"examples/example_{n}")
     assert ctx.findings == []
