@@ -221,6 +221,27 @@ function buildScene(THREE, OrbitControls, viewer, robot) {
   return { render, resize, controls };
 }
 
+// Where the course build wrote a model for the browser's MuJoCo (the include sets
+// data-simulation), the Simulate button loads assets/js/simulation.js and, through it,
+// MuJoCo itself: nothing of either comes before the reader asks.
+function offerSimulation(viewer, robot, scene) {
+  const button = part(viewer, "simulate");
+  if (!viewer.dataset.simulation || !button) return;
+  button.hidden = false;
+  button.addEventListener("click", async () => {
+    button.disabled = true;
+    try {
+      const { startSimulation } = await import("./simulation.js");
+      button.hidden = true;
+      startSimulation(viewer, { robot, render: scene.render, part,
+        still: (sentence) => showStill(viewer, sentence) });
+    } catch (error) {
+      console.error("Model viewer:", error);
+      setStatus(viewer, "ready", "The simulation could not be started.");
+    }
+  }, { once: true });
+}
+
 async function openViewer(viewer) {
   part(viewer, "open").disabled = true;
   if (!webgl2Available()) {
@@ -249,6 +270,7 @@ async function openViewer(viewer) {
       scene.controls.reset();
     });
     scene.resize();
+    offerSimulation(viewer, robot, scene);
     const joints = resets.length === 1 ? "1 joint" : `${resets.length} joints`;
     setStatus(viewer, "ready", `The 3D model is ready, with ${joints} to move.`);
     part(viewer, "stage").querySelector("canvas").focus({ preventScroll: true });

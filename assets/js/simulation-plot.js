@@ -1,0 +1,98 @@
+// The live plot of the Simulate mode (assets/js/simulation.js): the lesson's traced values
+// against simulated time, over the last WINDOW seconds, on a 2D canvas. For a position
+// lesson, each joint's set point (a step line, as the Python lesson's figure draws it) and
+// its position; for a pulse lesson, each wheel's speed.
+
+const WINDOW = 10; // s shown
+const COLORS = ["#d62728", "#1f77b4", "#ff7f0e", "#2ca02c", "#9467bd", "#8c564b"];
+const MARGIN = { left: 52, right: 8, top: 8, bottom: 26 };
+
+export class TracePlot {
+  // series: [{label, column, step}], `column` in the worker's trace rows (0 is time).
+  constructor(canvas, series, unit) {
+    Object.assign(this, { canvas, series, unit, rows: [] });
+  }
+
+  clear() {
+    this.rows = [];
+    this.draw();
+  }
+
+  add(rows) {
+    this.rows.push(...rows);
+    const last = this.rows.length ? this.rows[this.rows.length - 1][0] : 0;
+    const first = this.rows.findIndex((row) => row[0] >= last - WINDOW);
+    if (first > 0) this.rows.splice(0, first);
+  }
+
+  draw() {
+    const { canvas, rows } = this;
+    const width = canvas.clientWidth || 600;
+    const height = canvas.clientHeight || 200;
+    const ratio = window.devicePixelRatio || 1;
+    if (canvas.width !== Math.round(width * ratio)) canvas.width = Math.round(width * ratio);
+    if (canvas.height !== Math.round(height * ratio)) canvas.height = Math.round(height * ratio);
+    const g = canvas.getContext("2d");
+    g.setTransform(ratio, 0, 0, ratio, 0, 0);
+    g.clearRect(0, 0, width, height);
+    const t1 = Math.max(WINDOW, rows.length ? rows[rows.length - 1][0] : 0);
+    const t0 = t1 - WINDOW;
+    let low = Infinity;
+    let high = -Infinity;
+    for (const row of rows) {
+      for (const s of this.series) {
+        low = Math.min(low, row[s.column]);
+        high = Math.max(high, row[s.column]);
+      }
+    }
+    if (!(high > low)) { low = (Number.isFinite(low) ? low : 0) - 1; high = low + 2; }
+    const pad = 0.08 * (high - low);
+    low -= pad;
+    high += pad;
+    const plotW = width - MARGIN.left - MARGIN.right;
+    const plotH = height - MARGIN.top - MARGIN.bottom;
+    const x = (t) => MARGIN.left + ((t - t0) / WINDOW) * plotW;
+    const y = (v) => MARGIN.top + (1 - (v - low) / (high - low)) * plotH;
+
+    g.strokeStyle = "#9a9a9a";
+    g.lineWidth = 1;
+    g.strokeRect(MARGIN.left, MARGIN.top, plotW, plotH);
+    g.fillStyle = "#444";
+    g.font = "12px system-ui, sans-serif";
+    g.textAlign = "right";
+    g.textBaseline = "middle";
+    for (const v of [low + pad, (low + high) / 2, high - pad]) {
+      g.fillText(v.toFixed(Math.abs(high - low) < 1 ? 3 : 2).replace("-", "\u2212"),
+        MARGIN.left - 4, y(v));
+    }
+    g.textAlign = "center";
+    g.textBaseline = "top";
+    for (let t = Math.ceil(t0); t <= t1; t += 2) g.fillText(`${t} s`, x(t), height - 20);
+
+    this.series.forEach((s, index) => {
+      g.strokeStyle = COLORS[index % COLORS.length];
+      g.lineWidth = 1.5;
+      g.beginPath();
+      rows.forEach((row, i) => {
+        const px = x(row[0]);
+        const py = y(row[s.column]);
+        if (i === 0) g.moveTo(px, py);
+        else if (s.step) { g.lineTo(px, y(rows[i - 1][s.column])); g.lineTo(px, py); }
+        else g.lineTo(px, py);
+      });
+      g.stroke();
+    });
+  }
+}
+
+// The plot's legend as HTML, so that a screen reader can read it.
+export function legend(list, series) {
+  list.replaceChildren(...series.map((s, index) => {
+    const item = document.createElement("li");
+    const swatch = document.createElement("span");
+    swatch.className = "simulation-swatch";
+    swatch.style.background = COLORS[index % COLORS.length];
+    item.append(swatch, s.label);
+    return item;
+  }));
+}
