@@ -11,8 +11,8 @@ control_msgs, controller_manager_msgs). Run it through eval, once in each termin
   eval "$(sw2sim ros-env examples)"
 
 FOLDER (any number) is a package, or a folder holding packages, that roslaunch should
-find. A catkin workspace built after this line keeps the stand-ins when its
-devel/setup.bash is sourced.
+find. A catkin workspace built after this line keeps the stand-ins, and Debian's own
+ROS packages (/usr/share), when its devel/setup.bash is sourced.
 
 examples:
   eval "$(sw2sim ros-env examples)"
