@@ -103,3 +103,9 @@ def test_the_tool_tests_find_the_practices_as_the_course_does():
              for n, line in enumerate(path.read_text(encoding="utf-8").splitlines(), 1)
              if listed.search(line)]
     assert not found, found
+
+
+def test_no_module_is_over_600_lines_whatever_it_says():
+    over = {str(path): n for path, _ in modules(TOOL).values()
+            if (n := len(path.read_text(encoding="utf-8").splitlines())) > 600}
+    assert not over, over
