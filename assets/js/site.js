@@ -302,6 +302,105 @@
     window.addEventListener("resize", markAll);
   }
 
+  // ---- Checklists a reader can tick -----------------------------------------------
+  // _plugins/task_lists.rb leaves a page's checklist a plain list; here each item gets a
+  // checkbox, and the ticks are kept per page in localStorage (key: CHECKLIST_KEY and the
+  // page's path; value: the ticked items' texts), with a button that clears them. The
+  // sidebar's links to pages with a checklist carry their number of items
+  // (data-checklist): each practice shows how many of its items are ticked.
+  var CHECKLIST_KEY = "sw2sim-checklist:";
+
+  function readTicks(path) {
+    try {
+      var stored = JSON.parse(window.localStorage.getItem(CHECKLIST_KEY + path) || "[]");
+      return Array.isArray(stored) ? stored : [];
+    } catch (error) {
+      return [];
+    }
+  }
+
+  function writeTicks(path, ticked) {
+    try {
+      if (ticked.length) window.localStorage.setItem(CHECKLIST_KEY + path, JSON.stringify(ticked));
+      else window.localStorage.removeItem(CHECKLIST_KEY + path);
+    } catch (error) { /* not kept: the boxes still tick */ }
+  }
+
+  function setUpChecklists() {
+    var path = window.location.pathname;
+    var lists = document.querySelectorAll(".page-body ul.task-list");
+    var boxes = [];
+    Array.prototype.forEach.call(lists, function (list, listNumber) {
+      list.classList.add("checklist");
+      Array.prototype.forEach.call(list.querySelectorAll(":scope > li.task-list-item"), function (item, n) {
+        var text = item.textContent.trim().replace(/\s+/g, " ");
+        var box = document.createElement("input");
+        box.type = "checkbox";
+        box.className = "task-list-item-checkbox";
+        box.id = "check-" + listNumber + "-" + n;
+        box.value = text;
+        var label = document.createElement("label");
+        label.className = "task-list-label";
+        label.htmlFor = box.id;
+        // The item's own text (and inline markup) becomes the label; a nested list stays after it.
+        while (item.firstChild && !/^(UL|OL|P|DIV)$/.test(item.firstChild.nodeName)) {
+          label.appendChild(item.firstChild);
+        }
+        item.insertBefore(label, item.firstChild);
+        item.insertBefore(box, label);
+        boxes.push(box);
+      });
+      var clear = document.createElement("button");
+      clear.type = "button";
+      clear.className = "checklist-clear";
+      clear.textContent = "Clear the ticks";
+      clear.addEventListener("click", function () {
+        boxes.forEach(function (box) { box.checked = false; });
+        save();
+      });
+      list.parentNode.insertBefore(clear, list.nextSibling);
+    });
+
+    function save() {
+      writeTicks(path, boxes.filter(function (box) { return box.checked; })
+        .map(function (box) { return box.value; }));
+      showProgress();
+    }
+
+    var ticked = readTicks(path);
+    boxes.forEach(function (box) {
+      box.checked = ticked.indexOf(box.value) >= 0;
+      box.addEventListener("change", save);
+    });
+    showProgress();
+  }
+
+  // Beside each practice in the sidebar: ticked / items over its pages' checklists.
+  function showProgress() {
+    var sections = document.querySelectorAll(".sidebar-nav .nav-section");
+    Array.prototype.forEach.call(sections, function (section) {
+      var total = 0;
+      var done = 0;
+      section.querySelectorAll("a.nav-link[data-checklist]").forEach(function (link) {
+        var items = parseInt(link.getAttribute("data-checklist"), 10) || 0;
+        total += items;
+        done += Math.min(items, readTicks(new URL(link.href, window.location.href).pathname).length);
+      });
+      var summary = section.querySelector("summary");
+      if (!total || !summary) return;
+      var badge = summary.querySelector(".checklist-progress");
+      if (!badge) {
+        badge = document.createElement("span");
+        badge.className = "checklist-progress";
+        summary.appendChild(badge);
+      }
+      badge.textContent = done + "/" + total;
+      badge.title = done + " of " + total + " checklist items ticked";
+      badge.setAttribute("aria-label", badge.title);
+      badge.classList.toggle("checklist-done", done === total);
+    });
+  }
+
   // ---- Tables that scroll show which way: more-left / more-right -------------------
   // A table wider than its box (_plugins/tables.rb) gets a shadow at each edge beyond
   // which more of it lies (.table-box in main.css); with its first column pinned, the
@@ -335,6 +434,7 @@
     setUpMenu();
     addCopyButtons();
     setUpCodeScrolling();
+    setUpChecklists();
     addHeadingLinks();
     setUpLightbox();
     letWideFormulasScroll();
