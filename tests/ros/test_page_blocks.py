@@ -357,6 +357,27 @@ def _log_lines_said(session, page) -> None:
                 "should say so (`grep` prints nothing)")
 
 
+def _missing_tools_said(session, page) -> None:
+    """A `rosrun` block the runner could not run (a window) has `rosrun` here (the Makefile
+    installs rosbash), and a package Debian does not ship is said to be missing, with the
+    line that does its work here."""
+    import shutil
+    text = flat_page(page.path.removeprefix("_pages/"))
+    for window in session.windows:
+        command = window.split(": ", 1)[1].rsplit(" (opens a window)", 1)[0]
+        if not command.startswith("rosrun "):
+            continue
+        assert shutil.which("rosrun"), f"{window}: no rosrun here; the Makefile's ROS_PACKAGES " \
+                                       "installs it with rosbash"
+        package = command.split()[1]
+        found = subprocess.run(["rospack", "find", package], capture_output=True, text=True,
+                               env={**os.environ, "ROS_PACKAGE_PATH": "/usr/share"})
+        if found.returncode != 0:
+            assert "Debian 12 packages no" in text and "not found" in text, (
+                f"{window}: Debian has no {package}; say so beside it, with the line that "
+                "does the same here")
+
+
 def _pub_once_said(page) -> None:
     """A page that sends with `rostopic pub -1` says that it returns only after holding
     the message latched for rostopic's 3 s (_ONCE_DELAY), not at once."""
@@ -407,6 +428,7 @@ def test_page_ros_blocks(path, ros, tmp_path, record_property):
             for claim in claims:
                 claim.check(recorders.records[claim], session)
             _log_lines_said(session, page)
+            _missing_tools_said(session, page)
             _pub_once_said(page)
         except RosBlockError as error:
             fault = str(error)
