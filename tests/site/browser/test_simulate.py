@@ -22,6 +22,7 @@ import mujoco
 import numpy as np
 import pytest
 
+import axe_audit
 from course import browser_models
 from course.practices import load_script
 from repository import ROOT
@@ -256,3 +257,21 @@ def test_pages_load_no_simulation_before_simulate_is_pressed(site, browser_page)
     early = [r.url for r in visit.responses
              if "/assets/vendor/mujoco/" in r.url or "simulat" in r.url]
     assert not early, f"loaded before Simulate was pressed: {early}"
+
+
+def test_the_simulation_panel_is_accessible(site, browser_page):
+    """Its buttons, labelled fields with their ranges, plot and legend pass axe, a refused
+    value included."""
+    path, _ = simulation_page(site, 4)
+    axe_url = site.node_module_url(axe_audit.AXE)
+
+    def start_and_audit(page):
+        start(page)
+        set_input(page, "setpoint:block_controller", 3.0)
+        page.add_script_tag(url=axe_url)
+        axe_audit.start(page, path, context={"include": [[".simulation"]]})
+
+    visit = browser_page.visit(path, then=start_and_audit)
+    violations = axe_audit.serious(axe_audit.collect(browser_page.page))
+    assert not visit.problems(), visit.problems()
+    assert not violations, violations
