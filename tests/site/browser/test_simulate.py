@@ -275,3 +275,20 @@ def test_the_simulation_panel_is_accessible(site, browser_page):
     violations = axe_audit.serious(axe_audit.collect(browser_page.page))
     assert not visit.problems(), visit.problems()
     assert not violations, violations
+
+
+def test_without_webassembly_simulate_shows_the_still_picture_and_why(site, browser_page):
+    path, _ = simulation_page(site, 1)
+
+    def simulate_without_webassembly(page):
+        page.evaluate("() => { delete window.WebAssembly; }")
+        page.get_by_role("button", name="Turn the model in 3D").click()
+        page.get_by_role("button", name="Simulate").click(timeout=READY_S * 1000)
+        page.wait_for_function("() => document.querySelector('.model-viewer-still img').complete")
+
+    visit = browser_page.visit(path, then=simulate_without_webassembly)
+    assert not visit.problems(), visit.problems()
+    page = browser_page.page
+    assert page.locator(".model-viewer-still img").is_visible()
+    assert "WebAssembly" in page.locator(".model-viewer-note").text_content()
+    assert not [r.url for r in visit.responses if "/assets/vendor/mujoco/" in r.url]
