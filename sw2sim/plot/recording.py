@@ -20,6 +20,7 @@ from __future__ import annotations
 import csv
 import threading
 from pathlib import Path
+from time import monotonic
 
 from .fields import PlotError, Series
 
@@ -33,12 +34,14 @@ class Recording:
         self.first: float | None = None     # ROS time of the first sample
         self.error: PlotError | None = None
         self.lock = threading.Lock()
+        self.arrived = 0.0                  # time.monotonic() of the newest sample
 
     def add(self, name: str, time: float, value: float) -> None:
         with self.lock:
             if self.first is None:
                 self.first = time
             self.samples[name].append((time, value))
+            self.arrived = monotonic()
 
     def fail(self, error: PlotError) -> None:
         with self.lock:

@@ -24,6 +24,7 @@ from .recording import Recording
 EXIT_OK, EXIT_UNUSABLE = 0, 2
 TOPIC_WAIT = 10.0   # s of wall time for the named topics to be published
 TICK = 0.05         # s between looks when no window is open
+QUIET = 0.5         # s of wall time without a sample: the topics have gone quiet
 
 
 @dataclass
@@ -191,9 +192,7 @@ def _record(source, recording: Recording, options: Options, live: bool, stop, sa
                                            f"{'simulated' if source.uses_sim_time() else 'ROS'} "
                                            "time" if options.duration else "")
                 + "; Ctrl-C ends it" + (" (or close the window)" if window else ""))
-        if (options.duration is not None and recording.first is not None
-                and max(source.now(), recording.first + recording.span())
-                >= recording.first + options.duration):
+        if options.duration is not None and _done(source, recording, options.duration):
             break
         if window is not None:
             window.update()
@@ -206,6 +205,18 @@ def _record(source, recording: Recording, options: Options, live: bool, stop, sa
     if recording.first is None:
         say("sw2sim plot: no message came; nothing to draw")
     return EXIT_OK
+
+
+def _done(source, recording: Recording, duration: float) -> bool:
+    """The samples span `duration`; or the ROS clock has passed it and no sample came for
+    QUIET s (the topics went quiet). (The clock alone would end it early where the
+    messages lag behind it: a simulation running far faster than real time.)"""
+    if recording.first is None:
+        return False
+    if recording.span() >= duration:
+        return True
+    return (source.now() >= recording.first + duration
+            and time.monotonic() - recording.arrived > QUIET)
 
 
 def _xlabel(source) -> str:

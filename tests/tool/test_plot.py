@@ -172,8 +172,8 @@ class FakeSource:
 
     name = "ROS 1"
 
-    def __init__(self, start=100.0, appear=0.0, sizes=2):
-        self.t, self.start, self.sizes = start, start, sizes
+    def __init__(self, start=100.0, appear=0.0, sizes=2, ahead=0.0):
+        self.t, self.start, self.sizes, self.ahead = start, start, sizes, ahead
         self.born = time.monotonic() + appear
         self.stop = threading.Event()
         self.closed = False
@@ -199,7 +199,7 @@ class FakeSource:
         return message.t
 
     def now(self):
-        return self.t
+        return self.t + self.ahead
 
     def uses_sim_time(self):
         return True
@@ -237,6 +237,19 @@ def test_a_run_plots_for_its_duration_of_ros_time_and_writes_png_and_csv(tmp_pat
     assert {r["series"] for r in rows} == {"/joint_states/velocity[0]", "/joint_states/position[1]"}
     assert f"wrote {png} ({len(rows)} samples over" in said[-2]
     assert Image.open(png).size == (800, 450)
+
+
+def test_the_duration_is_that_of_the_samples_when_the_clock_runs_ahead_of_them(tmp_path,
+                                                                             monkeypatch):
+    """Under a simulation far faster than real time the messages lag behind /clock: the
+    plot still holds the duration's worth of them."""
+    source = FakeSource(ahead=30.0)
+    monkeypatch.setattr(plot_run, "choose", lambda ros, say: fake_ros(source))
+    table = tmp_path / "v.csv"
+    assert plot_run.run(plot_run.Options(["/joint_states/velocity[0]"], output=tmp_path / "v.png",
+                                         csv=table, duration=1.0), say=print) == 0
+    times = [float(r["time"]) for r in csv.DictReader(table.open())]
+    assert 0.9 < max(times) <= 1.0 + 1e-9
 
 
 def test_an_index_past_the_message_ends_the_run_with_the_fix(tmp_path, monkeypatch):
