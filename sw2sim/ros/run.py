@@ -368,6 +368,12 @@ class _Run:
                     self.tell("sw2sim ros: roscore did not start")
                     return 2
                 time.sleep(0.1)
+        else:
+            host, port = (_place(uri) + (None,))[:2]
+            who = holder(port) if host == "127.0.0.1" and port else None
+            self.tell(f"sw2sim ros: a ROS master already answers at {uri}"
+                      + (f" (PID {who})" if who else "") + ": this run uses it, and leaves it "
+                      "running at the end")
         from ..archive import shown
         from .launch_faults import ErrorPassage
         self.tell(f"sw2sim ros: {shown(self.launch_file) or self.launch_file} on {uri}, MuJoCo "

@@ -54,6 +54,10 @@ def test_the_arm_reaches_each_random_setpoint(ros, tmp_path):
             assert np.any(np.abs(positions[window] - target) < TOLERANCE), (joint, t, target)
             reached += 1
     assert reached >= 4, f"only {reached} setpoints could be judged"
+    # the test's master answered: sw2sim ros says it uses it, and names its process
+    master = ros.processes[0].pid
+    said = (ros.logs / "sw2sim_ros.log").read_text(errors="replace")
+    assert f"a ROS master already answers at {ros.uri} (PID {master} " in said, said[:600]
 
 
 
