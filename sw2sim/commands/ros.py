@@ -10,10 +10,13 @@ MuJoCo standing in for Gazebo: gazebo_ros (empty_world.launch, spawn_model, the
 /gazebo services), controller_manager's spawner and the ros_control controllers the
 package's YAML names (joint_state_controller, effort_controllers position, velocity and
 effort controllers). It uses the master at ROS_MASTER_URI if one answers, else starts
-its own, and stops everything it started on exit, Ctrl-C or --duration, and also when it
-is killed. Node types the exporter wrote that Noetic renamed (robot_state_publisher's
-`state_publisher`) run as what they became, in a copy of the launch file. Its second
-line is what another terminal runs first, for `rostopic` and `rosservice` there.
+its own there; when that port is taken by something else, it says what holds it (and
+the kill that frees it) and starts its master on another port. It stops everything it
+started on exit, Ctrl-C or --duration, and also when it is killed. Node types the
+exporter wrote that Noetic renamed (robot_state_publisher's `state_publisher`) run as
+what they became, in a copy of the launch file. Its line
+"for ROS commands in another terminal" is what another terminal runs first, for
+`rostopic` and `rosservice` there, with the master's address when it is not ROS's default.
 Exit status: 0 done, 1 a node of the launch could not start or died (named), 2 it could
 not run, 130 Ctrl-C, 143 SIGTERM, 129 SIGHUP.
 
