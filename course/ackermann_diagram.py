@@ -52,28 +52,53 @@ def _right_angle(ax, corner, u, v, size=0.025):
     ax.plot(*zip(*[_p(*a), _p(*b), _p(*c)]), color="black", lw=0.9, zorder=5)
 
 
-def _dimension(ax, p, q, label, offset, text_at=0.5, **kw):
-    """A dimension line between the page points p and q, moved by `offset` (page units)."""
+# On a phone the lettering is this large (points): 11 px or more in a 360 px phone's column
+# (course/phone.py's SHOWN_PX), the figure 5 in wide at 130 dots an inch.
+PHONE_TEXT = 12.5
+
+
+def _dimension(ax, p, q, label, offset, text_at=0.5, beside=None, size=11, **kw):
+    """A dimension line between the page points p and q, moved by `offset` (page units).
+    Its label sits on the line, in a gap; or, with `beside` (page units from the line's
+    middle), next to the line, which then runs whole from arrow to arrow."""
     p = np.add(p, offset)
     q = np.add(q, offset)
     ax.annotate("", p, q, arrowprops=dict(arrowstyle="<|-|>", color="black", lw=0.9,
                                           shrinkA=0, shrinkB=0, mutation_scale=10))
     m = np.add(p, np.multiply(np.subtract(q, p), text_at))
-    ax.text(*m, label, ha="center", va="center", fontsize=11, zorder=6,
-            bbox=dict(fc="white", ec="none", pad=1.5), **kw)
+    if beside is None:
+        ax.text(*m, label, ha="center", va="center", fontsize=size, zorder=6,
+                bbox=dict(fc="white", ec="none", pad=1.5), **kw)
+    else:
+        ax.text(*np.add(m, beside), label, fontsize=size, zorder=6, **kw)
+
+
+def _limits(n: dict[str, float], phone: bool) -> tuple[tuple[float, float], tuple[float, float]]:
+    """The drawing's page extent: x (from the turning centre's side to the l dimension's),
+    y (from the R dimension's to the w dimension's), with a margin all round."""
+    l, w, R = n["l"], n["w"], n["R"]
+    if phone:
+        return (-R - 0.1, w / 2 + 0.24), (-0.24, l + 0.27)
+    return (-R - 0.08, w / 2 + 0.25), (-0.2, l + 0.2)
 
 
 def draw(path: Path, phi_degrees: float = PHI_DEGREES) -> dict[str, float]:
     n = numbers(phi_degrees)
-    for fig, ax, phone in variants(path, figsize=(8.6, 6.2), phone_figsize=(5.0, 4.0)):
+    (x0, x1), (y0, y1) = _limits(n, phone=True)
+    # The phone figure has the drawing's own proportions: no empty band above or below.
+    phone_size = (5.0, round(5.0 * (y1 - y0) / (x1 - x0), 2))
+    for fig, ax, phone in variants(path, figsize=(8.6, 6.2), phone_figsize=phone_size):
         _diagram(ax, n, phone)
     return n
 
 
 def _diagram(ax, n: dict[str, float], phone: bool) -> None:
     """The car, its wheels' axes to the turning centre, the angles and the dimensions. On a
-    phone the lettering is larger beside the car: w's dimension goes higher, clear of the
-    angles' names over the front wheels."""
+    phone, where the lettering is larger against the car, the three angles' values are
+    listed in the empty corner above the turning centre instead of over the wheels and the
+    chassis, and each dimension's label sits beside its line, so that every line runs whole
+    from arrow to arrow."""
+    size = PHONE_TEXT if phone else 11
     l, w, R = n["l"], n["w"], n["R"]
     inner, outer, phi = (math.radians(n[k]) for k in ("inner", "outer", "phi"))
     ax.set_aspect("equal")
@@ -120,23 +145,43 @@ def _diagram(ax, n: dict[str, float], phone: bool) -> None:
         ax.add_patch(Arc((cx, cy), 2 * radius, 2 * radius, theta1=0, theta2=math.degrees(angle),
                          color=colour, lw=1.3, zorder=5))
         ax.text(cx + (radius + 0.012) * math.cos(angle / 2), cy + (radius + 0.012) * math.sin(angle / 2),
-                name, color=colour, fontsize=12, ha="left", va="center", zorder=6,
+                name, color=colour, fontsize=size + 1, ha="left", va="center", zorder=6,
                 bbox=dict(fc="white", ec="none", pad=0.5))
-    # the same angles at the wheels, turned from straight ahead
-    for key, symbol in (("inner", "i"), ("outer", "o")):
-        (x, y), angle, colour = wheels[key]
-        px, py = _p(x, y)
-        label = rf"$\Phi_{symbol}$ = {math.degrees(angle):.2f}° ({key})"
-        ax.text(px + (0.03 if key == "outer" else -0.03), py + 0.125, label, color=colour, fontsize=11,
-                ha="left" if key == "outer" else "right")
-    ax.text(*_p(l + 0.03, 0.0), rf"$\Phi$ = {n['phi']:.0f}°", color=CENTRE, fontsize=11, ha="center",
-            va="bottom", zorder=6, bbox=dict(fc="white", ec="none", pad=0.5))
+    # the same angles at the wheels, turned from straight ahead, and the centre's
+    values = {key: rf"$\Phi_{symbol}$ = {math.degrees(wheels[key][1]):.2f}° ({key})"
+              for key, symbol in (("inner", "i"), ("outer", "o"))}
+    centre_value = rf"$\Phi$ = {n['phi']:.0f}°"
+    if phone:
+        for row, (text, colour) in enumerate(((values["inner"], INNER), (centre_value + " (centre)", CENTRE),
+                                              (values["outer"], OUTER))):
+            ax.text(cx - 0.03, l + 0.2 - 0.075 * row, text, color=colour, fontsize=size, ha="left", va="center")
+    else:
+        for key in ("inner", "outer"):
+            (x, y), _, colour = wheels[key]
+            px, py = _p(x, y)
+            ax.text(px + (0.03 if key == "outer" else -0.03), py + 0.125, values[key], color=colour,
+                    fontsize=size, ha="left" if key == "outer" else "right")
+        ax.text(*_p(l + 0.03, 0.0), centre_value, color=CENTRE, fontsize=size, ha="center",
+                va="bottom", zorder=6, bbox=dict(fc="white", ec="none", pad=0.5))
     ax.plot(cx, cy, "o", color="black", ms=5, zorder=6)
-    ax.text(cx, cy - 0.035, "turning centre", ha="center", va="top", fontsize=10.5)
+    if phone:
+        ax.text(cx - 0.03, cy - 0.035, "turning centre", ha="left", va="top", fontsize=size)
+    else:
+        ax.text(cx, cy - 0.035, "turning centre", ha="center", va="top", fontsize=10.5)
     # l, w and R
-    _dimension(ax, _p(0, -w / 2), _p(l, -w / 2), f"l = {l * 1000:.0f} mm", (0.13, 0.0))
-    _dimension(ax, _p(l, w / 2), _p(l, -w / 2), f"w = {w * 1000:.0f} mm", (0.0, 0.22 if phone else 0.11))
-    _dimension(ax, _p(*centre), _p(0, 0), f"R = l / tan Φ = {R:.3f} m", (0.0, -0.13), text_at=0.42)
+    l_label, w_label, r_label = f"l = {l * 1000:.0f} mm", f"w = {w * 1000:.0f} mm", f"R = l / tan Φ = {R:.3f} m"
+    if phone:
+        _dimension(ax, _p(0, -w / 2), _p(l, -w / 2), l_label, (0.13, 0.0), beside=(0.025, 0.0),
+                   size=size, rotation=90, ha="left", va="center")
+        _dimension(ax, _p(l, w / 2), _p(l, -w / 2), w_label, (0.0, 0.175), beside=(0.0, 0.02),
+                   size=size, ha="center", va="bottom")
+        _dimension(ax, _p(*centre), _p(0, 0), r_label, (0.0, -0.15), beside=(0.0, -0.02),
+                   size=size, ha="center", va="top")
+    else:
+        _dimension(ax, _p(0, -w / 2), _p(l, -w / 2), l_label, (0.13, 0.0))
+        _dimension(ax, _p(l, w / 2), _p(l, -w / 2), w_label, (0.0, 0.11))
+        _dimension(ax, _p(*centre), _p(0, 0), r_label, (0.0, -0.13), text_at=0.42)
     ax.plot(*_p(0, 0), "+", color="black", ms=9, zorder=6)
-    ax.set_xlim(cx - 0.08, w / 2 + 0.25)
-    ax.set_ylim(-0.2, l + (0.27 if phone else 0.2))
+    (x0, x1), (y0, y1) = _limits(n, phone)
+    ax.set_xlim(x0, x1)
+    ax.set_ylim(y0, y1)
