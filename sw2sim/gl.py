@@ -31,8 +31,26 @@ def platform_for(environ: MutableMapping[str, str], system: str = sys.platform,
         return environ["MUJOCO_GL"]
     if not system.startswith("linux") or environ.get("DISPLAY") or environ.get("WAYLAND_DISPLAY"):
         return None
-    found = has_osmesa() if has_osmesa is not None else ctypes.util.find_library("OSMesa") is not None
+    found = has_osmesa() if has_osmesa is not None else osmesa_installed()
     return "osmesa" if found else "egl"
+
+
+# Where Debian, Ubuntu, Fedora and Arch put shared libraries.
+LIBRARY_FOLDERS = ("/usr/lib/x86_64-linux-gnu", "/usr/lib/aarch64-linux-gnu", "/usr/lib64",
+                   "/usr/lib", "/lib/x86_64-linux-gnu", "/lib64", "/usr/local/lib")
+
+
+def osmesa_installed() -> bool:
+    """Whether the OSMesa library is installed: a look into the usual library folders, and
+    only where it is not there ctypes' search, which runs `ldconfig -p` in a new process
+    (some 20 ms at every `import sw2sim`, more on a busy machine)."""
+    for folder in LIBRARY_FOLDERS:
+        try:
+            if any(name.startswith("libOSMesa.so") for name in os.listdir(folder)):
+                return True
+        except OSError:
+            continue
+    return ctypes.util.find_library("OSMesa") is not None
 
 
 def choose(environ: MutableMapping[str, str] | None = None) -> str | None:

@@ -71,3 +71,19 @@ def test_the_ros_simulation_loads_no_opengl_unless_it_shows_a_window():
         done = subprocess.run([sys.executable, "-c", probe], env=env, capture_output=True,
                               text=True, cwd=ROOT, timeout=60)
         assert done.stdout.split("\n")[0] == expected, done.stdout + done.stderr
+
+
+def test_osmesa_is_found_without_starting_ldconfig(monkeypatch):
+    """`import sw2sim` looks for OSMesa at every start: in the library folders, not with
+    ctypes' search, which runs `ldconfig -p` in a process of its own."""
+    import ctypes.util
+    from pathlib import Path
+    if not any(Path(f).glob("libOSMesa.so*") for f in gl.LIBRARY_FOLDERS if Path(f).is_dir()):
+        pytest.skip("OSMesa is not installed in a library folder here (libosmesa6)")
+
+    def no_search(name):
+        raise AssertionError(f"ctypes.util.find_library({name!r}) starts ldconfig")
+
+    monkeypatch.setattr(ctypes.util, "find_library", no_search)
+    assert gl.osmesa_installed()
+    assert gl.platform_for({}, system="linux") == "osmesa"
