@@ -39,8 +39,9 @@ there, in that folder and shell.
   not run; it is reported.
 - `sw2sim plot` (rqt_plot's stand-in) without `--duration` keeps running and keeps its
   terminal busy, as in the reader's terminal; with no display here it draws into a PNG.
-  At the end it must have plotted, and Ctrl-C must end it with status 0 and the PNG
-  written. With `--duration` it is a command that ends.
+  At the end it must have plotted, and once stopped (`plots_written()`, after
+  `close()`), have ended with status 0 and its PNG written. With `--duration` it is a
+  command that ends.
 
 A ```python block is a node file of the package (`data-file`): the page's commands start
 it. At the end every node the page shows must be running, what keeps running must still
@@ -195,7 +196,7 @@ class Session:
     master_uri: str
     ran: list[str] = field(default_factory=list)
     windows: list[str] = field(default_factory=list)   # "page.md:line: command" not run
-    plot_pngs: list[Path] = field(default_factory=list)   # what `sw2sim plot` drew
+    plots: list[Running] = field(default_factory=list)   # every `sw2sim plot` started
     running: list[Running] = field(default_factory=list)
     nodes: list[Block] = field(default_factory=list)
     stopped: list[int] = field(default_factory=list)   # every process id it has stopped
@@ -355,6 +356,8 @@ class Session:
         log = self.logs / f"{len(self.running) + len(self.ran):02d}-{command.program}.log"
         running = Running(command, shell.start(command.text, t.cwd, t.env, log), log, t.number)
         self.running.append(running)
+        if command.plots:
+            self.plots.append(running)
         return running
 
     def finish(self, command: Command, t: Terminal) -> None:
@@ -497,12 +500,12 @@ class Session:
                 if not r.log.stat().st_size:
                     raise RosBlockError(r.command.location, f"`{r.command.text}` printed nothing "
                                                             f"in {COMMAND_TIMEOUT:g} s")
-        for r in [r for r in self.running if r.command.plots]:
-            self.plotted(r)
+        for r in self.running:
+            if r.command.plots:
+                self.plotting(r)
 
-    def plotted(self, r: Running) -> None:
-        """A `sw2sim plot` that keeps running has plotted; the reader's Ctrl-C ends it with
-        status 0, and the PNG it names is written (`plot_pngs` lists them)."""
+    def plotting(self, r: Running) -> None:
+        """A `sw2sim plot` that keeps running has plotted."""
         deadline = time.monotonic() + COMMAND_TIMEOUT
         while "sw2sim plot: plotting" not in _tail(r.log) and time.monotonic() < deadline:
             if r.process.poll() is not None:
@@ -511,17 +514,19 @@ class Session:
         if "sw2sim plot: plotting" not in _tail(r.log):
             raise RosBlockError(r.command.location, f"`{r.command.text}` plotted nothing in "
                                                     f"{COMMAND_TIMEOUT:g} s:\n{_tail(r.log)}")
-        self._stop(r)
-        self.running.remove(r)
-        for t in self.terminals.values():
-            if t.busy is r:
-                t.busy = None
-        written = re.search(r"sw2sim plot: wrote (\S+\.png)", _tail(r.log))
-        if r.process.returncode != 0 or not written:
-            raise RosBlockError(r.command.location, f"`{r.command.text}` did not end with its "
-                                                    f"PNG on Ctrl-C (status {r.process.returncode}):"
-                                                    f"\n{_tail(r.log)}")
-        self.plot_pngs.append(self.place(r.command.package) / written[1])
+
+    def plots_written(self) -> list[Path]:
+        """After close(): each `sw2sim plot` the reader's Ctrl-C (or a later block in its
+        terminal) ended did so with status 0 and the PNG it names written; the PNGs."""
+        pngs = []
+        for r in self.plots:
+            written = re.search(r"sw2sim plot: wrote (\S+\.png)", _tail(r.log))
+            if r.process.poll() != 0 or not written:
+                raise RosBlockError(r.command.location, f"`{r.command.text}` did not end with "
+                                    f"its PNG on Ctrl-C (status {r.process.poll()}):\n"
+                                    f"{_tail(r.log)}")
+            pngs.append(self.place(r.command.package) / written[1])
+        return pngs
 
     def stop_launches(self) -> None:
         launches = [r for r in self.running if r.command.words[0] == "roslaunch"]

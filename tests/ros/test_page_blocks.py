@@ -438,5 +438,10 @@ def test_page_ros_blocks(path, ros, tmp_path, record_property):
         record_property("ros_blocks_ran", len(session.ran))
         record_property("ros_windows", session.windows)
     assert not session.leftovers(), f"processes left running: {session.leftovers()}"
+    if not fault:
+        try:   # each `sw2sim plot`, stopped as the reader's Ctrl-C stops it, wrote its PNG
+            assert all(png.is_file() for png in session.plots_written())
+        except RosBlockError as error:
+            fault = str(error)
     if fault:
         pytest.fail(fault, pytrace=False)
