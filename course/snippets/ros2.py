@@ -147,6 +147,10 @@ class Session:
         path.chmod(0o755)
         self.written[f"{block.ros2}/{block.data_file}"] = block
 
+    def node_path(self, package: str, file: str) -> Path:
+        """Where the page's node file `file` of the ported `package` is."""
+        return self.folder / package / file
+
     def command(self, command: Command, last: bool = True) -> None:
         words = command.words
         if not words:

@@ -19,6 +19,7 @@ import pytest
 
 from course.snippets import find_pages, parse_page
 from course.snippets.ros2 import Ros2BlockError, Session
+import ctrl_c
 from jazzy_commands import (action_problems, action_types, field_tables, jazzy_commands,
                             topic_problems, topic_types)
 from repository import ROOT
@@ -29,6 +30,11 @@ RECORD = Path(__file__).with_name("record.py")
 PAGES = [p for p in find_pages(ROOT) if parse_page(p, ROOT).ros2_blocks]
 WHEELS = ["front_left_joint", "front_right_joint", "rear_left_joint", "rear_right_joint"]
 PULSE = 1.0   # s: the pulse nodes' length of a pulse
+# How each lesson node is started again and stopped with Ctrl-C on its page's run, beside the
+# stop that ends the run: once while rclpy converts a message it took (where a
+# KeyboardInterrupt becomes rclpy's RuntimeError), once at a random moment
+# (tools/benchmark.py ctrl-c stops each 50 times).
+CTRL_C_IN_TAKE = (True, False)
 
 
 def test_every_practice_has_a_ros2_page_that_runs():
@@ -200,6 +206,21 @@ def _wait_for_line(process: subprocess.Popen, line: str, timeout: float = 30.0) 
     raise Ros2BlockError("the recorder", f"no joint states within {timeout:g} s")
 
 
+def _ctrl_c_stops(page, session: Session) -> None:
+    """The page's own node that runs until Ctrl-C, started again and stopped with Ctrl-C
+    while the simulation runs: it ends with status 0 and no traceback, also when the Ctrl-C
+    comes while rclpy takes a message in."""
+    for package, file in ctrl_c.NODES:
+        if not any(b.ros2 == package and b.data_file == file for b in page.blocks):
+            continue
+        command = [str(PYTHON), str(session.node_path(package, file)), "--ros-args", "-p",
+                   "use_sim_time:=true"]
+        for in_take in CTRL_C_IN_TAKE:
+            fault = ctrl_c.stop_once(command, session.env, session.cwd, in_take=in_take)
+            if fault:
+                raise Ros2BlockError(page.path, f"{package}/{file} on Ctrl-C: {fault}")
+
+
 @pytest.mark.parametrize("path", PAGES, ids=lambda p: p.relative_to(ROOT).as_posix())
 def test_page_ros2_blocks(path, tmp_path, record_property, request):
     if reason := missing():
@@ -233,6 +254,7 @@ def test_page_ros2_blocks(path, tmp_path, record_property, request):
             problems = [p for c in lines for check in (topic_problems, action_problems)
                         for p in check(c, record["graph"], tables)]
             assert not problems, "\n".join(problems)
+            _ctrl_c_stops(page, session)
         except Ros2BlockError as error:
             fault = str(error)
         finally:
