@@ -20,7 +20,8 @@ The package is checked first (as `sw2sim check`). Problems with exactly one righ
 answer are repaired in the written model, never in your package, and listed in
 README.md under Repairs with the lasting fix: a mesh path that differs from its
 file in capitals or slashes, the exporter's empty (all-zero) joint limits, an
-effort of 0, an inertia that breaks A + B >= C by rounding. Problems that only
+effort of 0, an inertia that breaks A + B >= C by rounding, a placeholder
+inertia no body of the link's mass could have. Problems that only
 ROS's build tools care about (package.xml) are reported and do not stop it. Any
 other error stops it: nothing is written, and the exit status is 1.
 
