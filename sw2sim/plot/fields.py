@@ -123,13 +123,12 @@ def unpublished(name: str, topics: dict[str, str]) -> str:
         close += [t for t in difflib.get_close_matches(candidate, shown, n=2, cutoff=0.8)
                   if t not in close]
     text = f"{name}: no topic of that name is published"
-    if close:
-        text += f"; did you mean {' or '.join(close[:3])}?"
+    text += f"; did you mean {' or '.join(close[:3])}?" if close else "."
     if shown:
         listed = ", ".join(shown[:30]) + (", ..." if len(shown) > 30 else "")
         text += f" Published now: {listed}."
     else:
-        text += (". Nothing is published yet: start the simulation first (`sw2sim ros PACKAGE` "
+        text += (" Nothing is published yet: start the simulation first (`sw2sim ros PACKAGE` "
                  "or roslaunch; `sw2sim ros2 PACKAGE` under ROS 2).")
     return text
 
