@@ -30,13 +30,17 @@ FRICTION_RANGE = (0.0, 2.0)   # N·m: from none to twice the pulse's torque
 # N·m: the wheels' joints are continuous with no <limit>, so no effort limit: the control
 # offers five times the lesson's torque either way.
 TORQUE_RANGE = (-5.0, 5.0)
+CAR_TOP_SPEED = 1.5   # m/s either way, as drive.py's keys allow (TOP_SPEED)
+# m/s and rad the car starts with: the run of _pages/practice-5/04-control-script.md,
+# car.command(speed=0.5, steering=0.3), whose path the page compares with Eq. 4's radius
+CAR_START = {"speed": 0.5, "steering": 0.3}
 POSITION_SCRIPTS = {3: "examples/example_3/scripts/arm_controller.py",
                     4: "examples/example_4/scripts/slider_controller.py"}
 
 
-def _model(practice: int, spec: mujoco.MjSpec) -> tuple[str, dict[str, str]]:
-    """The model's XML with mesh files named from the package root, and where the browser
-    fetches each one (a path from the site's root)."""
+def model_xml(practice: int, spec: mujoco.MjSpec) -> tuple[str, dict[str, str]]:
+    """The model's XML as MuJoCo writes it, with mesh files named from the package root, and
+    where the browser fetches each one (a path from the site's root)."""
     package = ROOT / f"examples/example_{practice}"
     files = {}
     for mesh in spec.meshes:
@@ -45,7 +49,7 @@ def _model(practice: int, spec: mujoco.MjSpec) -> tuple[str, dict[str, str]]:
         mesh.file = relative
     spec.meshdir = ""
     spec.modelfiledir = str(package)   # to_xml compiles: it must find the meshes
-    return browser_form(spec.to_xml()), files
+    return spec.to_xml(), files
 
 
 def _limits(limits) -> dict:
@@ -95,7 +99,25 @@ def _position(practice: int) -> tuple[mujoco.MjSpec, dict]:
                   "unit": "m" if practice == 4 else "rad"}
 
 
-LESSONS = {1: _pulse, 2: _pulse, 3: _position, 4: _position}
+def _car(practice: int) -> tuple[mujoco.MjSpec, dict]:
+    """Practice 5: the car of ackermann.py, driven by a speed and a steering angle."""
+    lesson = load_script("examples/example_5/scripts/ackermann.py")
+    package = ROOT / f"examples/example_{practice}"
+    spec = lesson.car_spec(package)
+    model = spec.compile()
+    geometry = lesson.measure(model)
+    actuator = {model.joint(model.actuator_trnid[a, 0]).name: a for a in range(model.nu)}
+    steering = model.joint(lesson.STEERING)
+    return spec, {
+        "kind": "car", "steering": lesson.STEERING, "knuckles": list(lesson.KNUCKLES.values()),
+        "wheels": lesson.WHEELS, "actuator": actuator, "control_rate": lesson.CONTROL_RATE,
+        "geometry": {"wheelbase": geometry.wheelbase, "track": geometry.track,
+                     "radius": geometry.radius},
+        "steering_range": [float(x) for x in model.jnt_range[steering.id]],
+        "speed_range": [-CAR_TOP_SPEED, CAR_TOP_SPEED], "start": CAR_START}
+
+
+LESSONS = {1: _pulse, 2: _pulse, 3: _position, 4: _position, 5: _car}
 
 
 def output(practice: int) -> Path:
@@ -105,10 +127,11 @@ def output(practice: int) -> Path:
 def build(practice: int) -> str:
     """The text of media/practice-N/simulate.json."""
     spec, settings = LESSONS[practice](practice)
-    xml, files = _model(practice, spec)
+    xml, files = model_xml(practice, spec)
     return json.dumps({
         "practice": practice, "mujoco": {"python": PYTHON_MUJOCO, "browser": BROWSER_MUJOCO},
-        "timestep": spec.option.timestep, "model": xml, "files": files, "lesson": settings,
+        "timestep": spec.option.timestep, "model": browser_form(xml), "files": files,
+        "lesson": settings,
     }, indent=1) + "\n"
 
 

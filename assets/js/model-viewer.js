@@ -233,7 +233,7 @@ function offerSimulation(viewer, robot, scene) {
     try {
       const { startSimulation } = await import("./simulation.js");
       button.hidden = true;
-      startSimulation(viewer, { robot, render: scene.render, part,
+      startSimulation(viewer, { robot, render: scene.render, part, controls: scene.controls,
         still: (sentence) => showStill(viewer, sentence) });
     } catch (error) {
       console.error("Model viewer:", error);

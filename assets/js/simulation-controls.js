@@ -11,6 +11,15 @@ function label(joint) {
 
 // What the reader may set for one lesson: [{name, label, unit, min, max, step}].
 export function lessonInputs(lesson) {
+  if (lesson.kind === "car") {
+    const [slow, fast] = lesson.speed_range;
+    const [right, left] = lesson.steering_range;
+    return [
+      { name: "speed", label: "speed of the rear axle's centre", unit: "m/s", min: slow,
+        max: fast, step: 0.1 },
+      { name: "steering", label: "centre steering angle, positive to the left", unit: RAD,
+        min: right, max: left, step: 0.01 }];
+  }
   if (lesson.kind === "pulse") {
     const [low, high] = lesson.torque_range;
     const inputs = lesson.joints.map((joint) => ({

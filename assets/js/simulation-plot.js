@@ -1,7 +1,8 @@
-// The live plot of the Simulate mode (assets/js/simulation.js): the lesson's traced values
-// against simulated time, over the last WINDOW seconds, on a 2D canvas. For a position
-// lesson, each joint's set point (a step line, as the Python lesson's figure draws it) and
-// its position; for a pulse lesson, each wheel's speed.
+// The live plots of the Simulate mode (assets/js/simulation.js), on a 2D canvas.
+// TracePlot: the lesson's traced values against simulated time, over the last WINDOW
+// seconds: for a position lesson, each joint's set point (a step line, as the Python
+// lesson's figure draws it) and its position; for a pulse lesson, each wheel's speed.
+// PathPlot: the car's path seen from above, with the circle of Eq. 4's radius.
 
 const WINDOW = 10; // s shown
 const COLORS = ["#d62728", "#1f77b4", "#ff7f0e", "#2ca02c", "#9467bd", "#8c564b"];
@@ -95,4 +96,68 @@ export function legend(list, series) {
     item.append(swatch, s.label);
     return item;
   }));
+}
+
+// The path of the rear axle's centre from above, x to the right and y up, at one scale,
+// and a dashed circle (`circle`: {x, y, radius}) where Eq. 4 says the path should run.
+export class PathPlot {
+  constructor(canvas) {
+    Object.assign(this, { canvas, rows: [], circle: null });
+  }
+
+  clear() {
+    this.rows = [];
+    this.circle = null;
+    this.draw();
+  }
+
+  add(rows) {
+    this.rows.push(...rows);
+    const last = this.rows.length ? this.rows[this.rows.length - 1][0] : 0;
+    const first = this.rows.findIndex((row) => row[0] >= last - 6 * WINDOW);
+    if (first > 0) this.rows.splice(0, first);
+  }
+
+  draw() {
+    const { canvas, rows, circle } = this;
+    const width = canvas.clientWidth || 600;
+    const height = canvas.clientHeight || 200;
+    const ratio = window.devicePixelRatio || 1;
+    if (canvas.width !== Math.round(width * ratio)) canvas.width = Math.round(width * ratio);
+    if (canvas.height !== Math.round(height * ratio)) canvas.height = Math.round(height * ratio);
+    const g = canvas.getContext("2d");
+    g.setTransform(ratio, 0, 0, ratio, 0, 0);
+    g.clearRect(0, 0, width, height);
+    const xs = rows.map((row) => row[1]);
+    const ys = rows.map((row) => row[2]);
+    if (circle && Number.isFinite(circle.radius)) {
+      xs.push(circle.x - circle.radius, circle.x + circle.radius);
+      ys.push(circle.y - circle.radius, circle.y + circle.radius);
+    }
+    if (!xs.length) { xs.push(-1, 1); ys.push(-1, 1); }
+    const [x0, x1] = [Math.min(...xs), Math.max(...xs)];
+    const [y0, y1] = [Math.min(...ys), Math.max(...ys)];
+    const span = Math.max(x1 - x0, y1 - y0, 0.5) * 1.15;
+    const scale = Math.min(width - 20, height - 20) / span;
+    const cx = (x0 + x1) / 2;
+    const cy = (y0 + y1) / 2;
+    const px = (x) => width / 2 + (x - cx) * scale;
+    const py = (y) => height / 2 - (y - cy) * scale;
+    g.fillStyle = "#444";
+    g.font = "12px system-ui, sans-serif";
+    g.fillText(`1 m = ${Math.round(scale)} px`, 8, 16);
+    if (circle && Number.isFinite(circle.radius)) {
+      g.strokeStyle = COLORS[0];
+      g.setLineDash([6, 4]);
+      g.beginPath();
+      g.arc(px(circle.x), py(circle.y), circle.radius * scale, 0, 2 * Math.PI);
+      g.stroke();
+      g.setLineDash([]);
+    }
+    g.strokeStyle = COLORS[1];
+    g.lineWidth = 1.5;
+    g.beginPath();
+    rows.forEach((row, i) => (i ? g.lineTo : g.moveTo).call(g, px(row[1]), py(row[2])));
+    g.stroke();
+  }
 }

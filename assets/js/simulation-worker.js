@@ -7,9 +7,9 @@
 // Python's `model.joint(name).qposadr` is an array of one.)
 //
 // Messages in:  load {vendor, lesson, site}, play, pause, reset, set {name, value},
-//               run {seconds} (steps as fast as it can, for the tests and the benchmark)
-// Messages out: progress {loaded, total}, ready {joints, lesson}, frame {time, qpos,
-//               speed, trace}, error {message}
+//               run {seconds, id} (steps as fast as it can, for the tests and the benchmark)
+// Messages out: progress {loaded, total}, ready {joints, lesson, inputs, free}, frame
+//               {time, qpos, speed, trace, ran: the id of the run it ends}, error {message}
 
 let mujoco = null;
 let model = null;
@@ -18,6 +18,8 @@ let lesson = null;
 let inputs = {};
 let controllers = [];
 let wheelDofs = [];      // a pulse lesson's joints' entries in qvel and qfrc_applied
+let steeringQpos = 0;    // the car's centre steering joint in qpos
+let stepsPerControl = 1; // physics steps per run of the car's control (CONTROL_RATE)
 let playing = false;
 let timer = null;
 let trace = [];          // [time, ...the lesson's plotted values], TRACE_RATE per second
@@ -129,6 +131,45 @@ function wheel_torque(t, period, pulse, torque) {
   return t % period < pulse ? torque : 0;
 }
 
+// ---- Practice 5's ackermann.py ----------------------------------------------------------
+
+// Equation 4: the left and right knuckle angles for a centre angle `phi` (rad).
+function knuckle_angles(phi, l, w) {
+  const s = Math.sin(phi);
+  const c = Math.cos(phi);
+  return [Math.atan2(2 * l * s, 2 * l * c - w * s), Math.atan2(2 * l * s, 2 * l * c + w * s)];
+}
+
+// Each wheel's angular speed, rad/s, for the rear axle's centre at `speed` m/s.
+function wheel_speeds(speed, phi, { wheelbase: l, track: w, radius: r }) {
+  const k = Math.tan(phi) / l;
+  const out = {};
+  for (const [side, share] of [["left", 1 - (k * w) / 2], ["right", 1 + (k * w) / 2]]) {
+    out[`rear_${side}`] = (speed * share) / r;
+    out[`front_${side}`] = (speed * Math.hypot(share, k * l)) / r;
+  }
+  return out;
+}
+
+// Car.control: read the steering joint; set the knuckles and the wheels.
+function carControl() {
+  const ctrl = data.ctrl;
+  const phi = data.qpos[steeringQpos];
+  const angles = knuckle_angles(phi, lesson.geometry.wheelbase, lesson.geometry.track);
+  lesson.knuckles.forEach((joint, i) => { ctrl[lesson.actuator[joint]] = angles[i]; });
+  const speeds = wheel_speeds(inputs.speed, phi, lesson.geometry);
+  for (const [key, joint] of Object.entries(lesson.wheels)) {
+    ctrl[lesson.actuator[joint]] = speeds[key];
+  }
+}
+
+// Car.pose: x, y (m) of the rear axle centre and the heading (rad).
+function pose() {
+  const q = data.qpos;
+  const [qw, qx, qy, qz] = [q[3], q[4], q[5], q[6]];
+  return [q[0], q[1], Math.atan2(2 * (qw * qz + qx * qy), 1 - 2 * (qy * qy + qz * qz))];
+}
+
 // ---- The lesson's inputs and one step -------------------------------------------------
 
 function applyInputs() {
@@ -136,6 +177,10 @@ function applyInputs() {
     lesson.joints.forEach((joint, i) => {
       model.dof_frictionloss[wheelDofs[i]] = inputs[`friction:${joint}`];
     });
+  }
+  if (lesson.kind === "car") {   // Car.command: the steering actuator's set point
+    const [low, high] = lesson.steering_range;
+    data.ctrl[lesson.actuator[lesson.steering]] = clamp(inputs.steering, low, high);
   }
   if (lesson.kind === "position") {
     for (const c of controllers) {
@@ -146,6 +191,7 @@ function applyInputs() {
 }
 
 function traced() {
+  if (lesson.kind === "car") return [...pose(), data.qpos[steeringQpos]];
   if (lesson.kind === "pulse") {
     const qvel = data.qvel;
     return wheelDofs.map((dof) => qvel[dof]);
@@ -159,6 +205,7 @@ let timestep = 0;
 
 function step() {
   const dt = timestep;
+  if (lesson.kind === "car" && steps % stepsPerControl === 0) carControl();
   if (steps % traceEvery === 0) trace.push([data.time, ...traced()]);
   if (lesson.kind === "pulse") {
     const qfrc = data.qfrc_applied;
@@ -166,7 +213,7 @@ function step() {
       qfrc[wheelDofs[i]] = wheel_torque(data.time, inputs.period, inputs.pulse,
         inputs[`torque:${joint}`]);
     });
-  } else {
+  } else if (lesson.kind === "position") {
     const ctrl = data.ctrl;
     for (const c of controllers) ctrl[c.motor] = c.effort(dt);
   }
@@ -176,6 +223,7 @@ function step() {
 
 function defaults() {
   const values = {};
+  if (lesson.kind === "car") return { ...lesson.start };
   if (lesson.kind === "pulse") {
     values.period = lesson.period;
     values.pulse = lesson.pulse;
@@ -192,6 +240,12 @@ function defaults() {
   return values;
 }
 
+// Whether the model's first joint is a free joint (a car on the floor): its qpos 0-6 are
+// then the base's position and orientation.
+function hasFreeBase() {
+  return model.njnt > 0 && model.jnt_type[0] === 0;   // mjJNT_FREE
+}
+
 function reset() {
   mujoco.mj_resetData(model, data);
   steps = 0;
@@ -203,11 +257,11 @@ function reset() {
   mujoco.mj_forward(model, data);
 }
 
-function frame(speed) {
+function frame(speed, ran = null) {
   const sent = trace;
   trace = [];
   postMessage({ type: "frame", time: data.time, qpos: Float64Array.from(data.qpos), speed,
-    trace: sent });
+    trace: sent, ran });
 }
 
 // ---- Real time --------------------------------------------------------------------------
@@ -301,10 +355,14 @@ async function load({ vendor, lesson: lessonUrl, site }) {
   model = mujoco.MjModel.from_xml_path("/model/model.xml");
   data = new mujoco.MjData(model);
   lesson = built.lesson;
-  if (lesson.kind === "pulse") wheelDofs = lesson.joints.map((joint) => address(joint).dof);
   const option = model.opt;   // a copy on MuJoCo's heap: read once, then freed
   timestep = option.timestep;
   option.delete();
+  if (lesson.kind === "pulse") wheelDofs = lesson.joints.map((joint) => address(joint).dof);
+  if (lesson.kind === "car") {
+    steeringQpos = address(lesson.steering).qpos;
+    stepsPerControl = Math.round(1 / (lesson.control_rate * timestep));
+  }
   traceEvery = Math.max(1, Math.round(1 / (TRACE_RATE * timestep)));
   inputs = defaults();
   reset();
@@ -314,7 +372,7 @@ async function load({ vendor, lesson: lessonUrl, site }) {
     joints.push({ name: joint.name, qpos: joint.qposadr });
     joint.delete();
   }
-  postMessage({ type: "ready", joints, lesson, inputs, timestep,
+  postMessage({ type: "ready", joints, lesson, inputs, timestep, free: hasFreeBase(),
     version: built.mujoco.browser });
   frame(0);
 }
@@ -335,7 +393,7 @@ onmessage = async ({ data: message }) => {
         const began = performance.now();
         const end = data.time + message.seconds;
         while (data.time < end - 1e-9) step();
-        frame(message.seconds / ((performance.now() - began) / 1000));
+        frame(message.seconds / ((performance.now() - began) / 1000), message.id);
         break;
       }
       default: throw new Error(`unknown message ${message.type}`);

@@ -21,8 +21,9 @@ needs_node = pytest.mark.skipif(
     NODE is None or not (BROWSER_PACKAGE / "mujoco.wasm").is_file(),
     reason="Node.js or node_modules/@mujoco/mujoco is missing (make setup installs them)")
 
-# One Node process loads every model it is given ({name: {"files": {path: text or base64},
-# "model": path}}) and prints, for each, its sizes or MuJoCo's error.
+# One Node process loads every model it is given ({name: {"files": {path: base64},
+# "model": path, "ctrl": [...], "steps": n}}) and prints, for each, its sizes and its qpos
+# after `steps` steps with `ctrl` held, or MuJoCo's error.
 LOADER = r"""
 import loadMujoco from "@mujoco/mujoco";
 import fs from "node:fs";
@@ -42,7 +43,17 @@ for (const [name, { files, model }] of Object.entries(cases)) {
   }
   try {
     const m = mujoco.MjModel.from_xml_path(`${root}/${model}`);
-    report[name] = { nq: m.nq, nu: m.nu, nbody: m.nbody, timestep: m.opt.timestep };
+    const d = new mujoco.MjData(m);
+    const { ctrl = [], steps = 0 } = cases[name];
+    for (let i = 0; i < steps; i++) {
+      ctrl.forEach((value, k) => { d.ctrl[k] = value; });
+      mujoco.mj_step(m, d);
+    }
+    const option = m.opt;
+    report[name] = { nq: m.nq, nu: m.nu, nbody: m.nbody, timestep: option.timestep,
+      qpos: Array.from(d.qpos) };
+    option.delete();
+    d.delete();
     m.delete();
   } catch (error) {
     report[name] = { error: String(error.message ?? error) };
@@ -55,9 +66,8 @@ console.log(JSON.stringify(report));
 def load_in_browser_mujoco(cases: dict) -> dict:
     import base64
 
-    encoded = {name: {"model": case["model"],
-                      "files": {path: base64.b64encode(data).decode() for path, data in
-                                case["files"].items()}}
+    encoded = {name: {**case, "files": {path: base64.b64encode(data).decode() for path, data in
+                                        case["files"].items()}}
                for name, case in cases.items()}
     run = subprocess.run([NODE, "--input-type=module", "-e", LOADER], cwd=ROOT,
                          input=json.dumps(encoded), capture_output=True, text=True, timeout=60)
@@ -104,28 +114,37 @@ def test_a_browser_model_is_the_lessons_model(practice):
                                    err_msg=field)
 
 
-def test_browser_form_changes_only_the_input_signature(tmp_path):
+# What browser_form may change in the compiled model: the input signature, and each
+# joint's force cap moved onto the one actuator that drives it.
+BRIDGED = {"actuator_ctrlspec", "jnt_actfrcrange", "jnt_actfrclimited", "actuator_forcerange",
+           "actuator_forcelimited"}
+CAR_CONTROLS = [0.3, 0.3, 0.3, 8, 8, 8, 8]   # rad for the steering, rad/s for the wheels
+STEPS = 200   # 0.2 s of 1 ms: the caps act from the first step
+
+
+def test_browser_form_leaves_the_motion_in_python_as_it_was(tmp_path):
     """Practice 5 as `sw2sim convert` writes it has position and velocity actuators with
-    input="pos" / "vel": without it, 4.0 compiles the same model, all but
-    actuator_ctrlspec, and 2 s of the same controls give the same motion."""
+    input="pos" / "vel", and effort limits as the joints' actuatorfrcrange: rewritten, 4.0
+    compiles the same model but for those fields, and 1 s of the same controls (the
+    steering's and the wheels' force caps acting) gives the same motion."""
     folder = tmp_path / "car"
     convert(ROOT / "examples/example_5", folder)
     robot = next(p for p in folder.glob("*.xml") if p.name != "scene.xml")
     written = robot.read_text()
     assert 'input="pos"' in written and 'input="vel"' in written
     bridged = browser_form(written)
-    assert "input=" not in bridged
+    assert "input=" not in bridged and "actuatorfrcrange" not in bridged
     before = mujoco.MjModel.from_xml_path(str(folder / "scene.xml"))
     robot.write_text(bridged)
     after = mujoco.MjModel.from_xml_path(str(folder / "scene.xml"))
     differ = [name for name in dir(before) if not name.startswith("_")
               and isinstance(getattr(before, name), np.ndarray)
               and not np.array_equal(getattr(before, name), getattr(after, name))]
-    assert differ == ["actuator_ctrlspec"]
+    assert "actuator_ctrlspec" in differ and set(differ) <= BRIDGED, differ
     runs = []
     for model in (before, after):
         data = mujoco.MjData(model)
-        data.ctrl[:] = np.linspace(0.2, 0.9, model.nu)
+        data.ctrl[:] = CAR_CONTROLS
         for _ in range(1000):
             mujoco.mj_step(model, data)
         runs.append(data.qpos.copy())
@@ -147,8 +166,33 @@ def test_the_browser_mujoco_loads_every_practice_and_needs_the_bridge(tmp_path):
     for practice in browser_models.LESSONS:
         spec, _ = browser_models.LESSONS[practice](practice)
         lesson = spec.compile()
-        assert report[f"practice{practice}"] == {
-            "nq": lesson.nq, "nu": lesson.nu, "nbody": lesson.nbody,
-            "timestep": lesson.opt.timestep}, practice
+        loaded = report[f"practice{practice}"]
+        assert "error" not in loaded, loaded
+        assert (loaded["nq"], loaded["nu"], loaded["nbody"], loaded["timestep"]) == (
+            lesson.nq, lesson.nu, lesson.nbody, lesson.opt.timestep), practice
     assert "input is only available" in report["converted"]["error"]
     assert report["bridged"]["nu"] == 2
+
+
+@needs_node
+def test_the_browser_mujoco_steps_the_bridged_model_as_python_the_original():
+    """Practice 5's car as the lesson builds it, its effort limits as the joints' force caps
+    (input="pos" alone removed), moves otherwise in 3.14 than in 4.0; with browser_form's
+    rewrite, as 4.0 moves the original. Over STEPS: later, the wheels' contacts with the
+    floor amplify the last bits in which native and WebAssembly arithmetic may differ
+    (test_simulate.py's CAR_PATH says more)."""
+    spec, _ = browser_models.LESSONS[5](5)
+    written, urls = browser_models.model_xml(5, spec)
+    assert "actuatorfrcrange" in written
+    files = {path: (ROOT / url).read_bytes() for path, url in urls.items()}
+    run = {"model": "model.xml", "ctrl": CAR_CONTROLS, "steps": STEPS}
+    report = load_in_browser_mujoco({
+        "signature_only": {**run, "files": {
+            **files, "model.xml": re.sub(r' input="(pos|vel)"', "", written).encode()}},
+        "bridged": {**run, "files": {**files, "model.xml": browser_form(written).encode()}}})
+    model = mujoco.MjModel.from_xml_string(written, files)
+    data = mujoco.MjData(model)
+    data.ctrl[:] = CAR_CONTROLS
+    mujoco.mj_step(model, data, nstep=STEPS)
+    np.testing.assert_allclose(report["bridged"]["qpos"], data.qpos, rtol=0, atol=1e-9)
+    assert np.abs(np.array(report["signature_only"]["qpos"]) - data.qpos).max() > 1e-3

@@ -29,6 +29,13 @@ from repository import ROOT
 
 SAME_MODEL = 1e-9        # absolute, in rad, rad/s or m
 LESSON = (1e-5, 1e-6)    # relative, absolute
+# Practice 5's car rolls on four wheels in contact with the floor, which amplifies the last
+# bit of a number: in MuJoCo 4.0 alone, the knuckle angles changed by one unit in the last
+# place (np.nextafter) move the car 0.3 mm after 12 s. The page computes Eq. 4 with the
+# browser's Math.atan2 and Math.hypot, whose last bits may differ from C's: its path
+# differs from Python's by 0.5-0.9 mm. CAR_PATH is ten times the 1-ulp figure.
+CAR_PATH = 3e-3          # m
+CAR_STEERING = 1e-5      # rad: the steering joint follows its own actuator, no contact
 READY_S = 30.0
 SAMPLE = 0.01   # s between two rows of the page's trace (the worker's TRACE_RATE)
 WHEELS = browser_models.WHEELS
@@ -292,3 +299,58 @@ def test_without_webassembly_simulate_shows_the_still_picture_and_why(site, brow
     assert page.locator(".model-viewer-still img").is_visible()
     assert "WebAssembly" in page.locator(".model-viewer-note").text_content()
     assert not [r.url for r in visit.responses if "/assets/vendor/mujoco/" in r.url]
+
+
+def python_car(commands, same_model=False):
+    """ackermann.Car driven through `commands` [(speed, steering, seconds)]: rows of
+    [t, x, y, heading, centre angle] at its control rate (its own log)."""
+    lesson = load_script("examples/example_5/scripts/ackermann.py")
+    car = lesson.Car(package=ROOT / "examples/example_5")
+    if same_model:
+        car.model = page_model(5)
+        car.data = mujoco.MjData(car.model)
+    for speed, steering, seconds in commands:
+        car.command(speed=speed, steering=steering)
+        car.run(seconds)
+    return np.array(car.log)[:, :5]
+
+
+def test_practice_5_car_drives_eq_4s_circle(site, browser_page):
+    path, _ = simulation_page(site, 5)
+    found = {}
+
+    def steps(page):
+        start(page)
+        found["circle"], found["speed"] = run(page, 12.0)
+        page.wait_for_function("() => /driven R/.test("
+                               "document.querySelector('.simulation-readout').textContent)")
+        found["readout"] = page.locator(".simulation-readout").text_content()
+        reset(page)
+        set_input(page, "steering", 0)
+        found["straight"], _ = run(page, 10.0)
+        field = set_input(page, "steering", 0.6)   # past the 0.5236 rad limit
+        found["refused"] = field.get_attribute("aria-invalid")
+
+    visit = browser_page.visit(path, then=steps)
+    assert not visit.problems(), visit.problems()
+    circle = found["circle"]
+    for python in (python_car([(0.5, 0.3, 12.0)], same_model=True),
+                   python_car([(0.5, 0.3, 12.0)])):
+        assert circle.shape == python.shape
+        np.testing.assert_allclose(circle[:, 0], python[:, 0], atol=1e-9)
+        assert np.abs(circle[:, 1:3] - python[:, 1:3]).max() <= CAR_PATH
+        assert np.abs(circle[:, 3] - python[:, 3]).max() <= CAR_PATH / 0.4   # over l = 0.4 m
+        assert np.abs(circle[:, 4] - python[:, 4]).max() <= CAR_STEERING
+    # The page: "driven R = 1.2987 m, predicted 1.2931 m, error +0.44 %"
+    page_line = stated("practice-5__04-control-script",
+                       r"(driven R = [\d.]+ m, predicted [\d.]+ m, error [-+][\d.]+ %)")
+    numbers = [float(x) for x in re.findall(r"[\d.]+", page_line)]
+    shown = [float(x) for x in re.findall(r"[\d.]+", found["readout"].replace("\u2212", "-"))]
+    assert len(shown) == 3, found["readout"]
+    assert abs(shown[0] - numbers[0]) <= 1e-4 and shown[1] == numbers[1]
+    assert abs(shown[2] - numbers[2]) <= 0.01
+    # Straight ahead: the page's "0.0090 mm to the side" after 10 s
+    assert abs(found["straight"][-1, 2]) < 1e-4
+    assert found["straight"][-1, 1] > 4.9
+    assert found["refused"] == "true"
+    print(f"Practice 5: {found['speed']:.1f}x real time stepping 12 s at once")
