@@ -50,7 +50,21 @@ module Sw2simSite
     end
 
     def text(cell)
-      CGI.unescapeHTML(cell.gsub(TAG, "")).strip
+      CGI.unescapeHTML(cell.gsub(TAG, "")).gsub(INLINE_TEX) { tex_text(Regexp.last_match(1)) }.strip
+    end
+
+    # A formula in a header cell (`\(\Phi_i\)`, typeset only once every page is rendered:
+    # _plugins/math.rb) as plain text for its column's name on a card: Φᵢ.
+    INLINE_TEX = /\\\((.*?)\\\)/.freeze
+    GREEK = { "alpha" => "α", "beta" => "β", "gamma" => "γ", "delta" => "δ", "Delta" => "Δ",
+              "theta" => "θ", "mu" => "μ", "pi" => "π", "tau" => "τ", "phi" => "φ", "Phi" => "Φ",
+              "omega" => "ω", "Omega" => "Ω" }.freeze
+    SUBSCRIPT = { "i" => "ᵢ", "o" => "ₒ", "0" => "₀", "1" => "₁", "2" => "₂", "x" => "ₓ" }.freeze
+
+    def tex_text(tex)
+      tex.gsub(/\\([A-Za-z]+)/) { GREEK.fetch(Regexp.last_match(1), Regexp.last_match(1)) }
+         .gsub(/_\{?([A-Za-z0-9])\}?/) { SUBSCRIPT.fetch(Regexp.last_match(1), "_#{Regexp.last_match(1)}") }
+         .delete("{}").strip
     end
 
     def mode(attrs, body, labels)
