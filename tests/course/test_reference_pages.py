@@ -226,6 +226,37 @@ def test_ros2_page_shows_what_the_port_writes(ros2):
     assert launch == files["launch/gazebo.launch.py"]
 
 
+def test_practice_ros2_pages_show_the_ports_controllers(tmp_path):
+    """A practice's ROS 2 page that shows config/controllers.yaml shows what its `sw2sim
+    port` line writes: the whole file (its comments aside), or with "(part)" some of its
+    lines, as they are."""
+    from course.snippets.ros import commands
+    from sw2sim.port import port
+    shown = 0
+    for path in sorted((ROOT / "_pages").glob("practice-*/*-ros2.md")):
+        text = path.read_text(encoding="utf-8")
+        page_ = parse_page(path, ROOT)
+        for m in re.finditer(r"```yaml\n(.*?)```\n\{: data-file=\"config/controllers\.yaml"
+                             r"( \(part\))?\"\}", text, re.S):
+            ported = [c.words for b in page_.ros2_commands for c in commands(b)
+                      if c.words[:2] == ["sw2sim", "port"]]
+            words = ported[0]
+            options = words[words.index("--effort-joints") + 1:][:1] \
+                if "--effort-joints" in words else []
+            source = ROOT / "examples" / Path(words[2]).name
+            out = port(source, tmp_path / path.stem / source.name, effort_joints=options)
+            written = _without_comments((out.package_dir / "config" / "controllers.yaml")
+                                        .read_text(encoding="utf-8"))
+            block = m.group(1).strip()
+            if m.group(2):
+                missing = [line for line in block.splitlines() if line not in written.splitlines()]
+                assert not missing, (path.name, missing)
+            else:
+                assert block == written, (path.name, written)
+            shown += 1
+    assert shown >= 3
+
+
 def test_ros2_controllers_keep_practice_3s_gains_and_rates(ros2):
     text, files, _ = ros2
     controllers = yaml.safe_load(files["config/controllers.yaml"])
