@@ -24,6 +24,7 @@ import numpy as np
 from lxml import etree
 
 from .actuators import Actuator, add_actuators
+from .browser_model import browser_form
 from .limits import DAMPING_RATIO, HOLD
 from .loader import load_package, lowest_collision_point
 from .mesh_formats import converted_from
@@ -119,7 +120,8 @@ def convert(source: str | os.PathLike | Package, folder: str | os.PathLike, *,
     robot_file = folder / f"{result.name}.xml"
     header = (f"<!-- {spec.modelname}: converted by `sw2sim convert` from "
               f"{package.urdf.relative_to(package.root).as_posix()}; see README.md -->\n")
-    robot_file.write_text(header + spec.to_xml(), encoding="utf-8", newline="\n")
+    # in the form the site's in-browser MuJoCo also reads and steps alike (browser_model.py)
+    robot_file.write_text(header + browser_form(spec.to_xml()), encoding="utf-8", newline="\n")
     (folder / SCENE).write_text(_scene_xml(result, model), encoding="utf-8", newline="\n")
     (folder / README).write_text(readme(result, package), encoding="utf-8", newline="\n")
     result.files += [robot_file, folder / SCENE, folder / README]
@@ -282,7 +284,9 @@ def readme(result: Conversion, package: Package) -> str:
             f"`{j}`" for j in soft) + " were dropped; the joint ranges are the hard limits.")
     if any(limits[j].effort for j in limits):
         changes.append("Effort limits became each joint's `actuatorfrcrange`, which caps the "
-                       "total actuator force on the joint.")
+                       "total actuator force on the joint; on a joint one actuator drives, "
+                       "that actuator's `forcerange`, the same cap in the form MuJoCo's "
+                       "in-browser build (3.14) also steps as 4.0 does.")
     if result.excluded:
         changes.append("Contacts were excluded between a body fixed to the world and each body "
                        "it carries, whose meshes overlap at the joints and would lock them: " +

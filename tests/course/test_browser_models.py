@@ -122,21 +122,19 @@ CAR_CONTROLS = [0.3, 0.3, 0.3, 8, 8, 8, 8]   # rad for the steering, rad/s for t
 STEPS = 200   # 0.2 s of 1 ms: the caps act from the first step
 
 
-def test_browser_form_leaves_the_motion_in_python_as_it_was(tmp_path):
-    """Practice 5 as `sw2sim convert` writes it has position and velocity actuators with
+def test_browser_form_leaves_the_motion_in_python_as_it_was():
+    """Practice 5's car as MuJoCo 4.0 writes it has position and velocity actuators with
     input="pos" / "vel", and effort limits as the joints' actuatorfrcrange: rewritten, 4.0
     compiles the same model but for those fields, and 1 s of the same controls (the
     steering's and the wheels' force caps acting) gives the same motion."""
-    folder = tmp_path / "car"
-    convert(ROOT / "examples/example_5", folder)
-    robot = next(p for p in folder.glob("*.xml") if p.name != "scene.xml")
-    written = robot.read_text()
+    spec, _ = browser_models.LESSONS[5](5)
+    written, urls = browser_models.model_xml(5, spec)
+    assets = {path: (ROOT / url).read_bytes() for path, url in urls.items()}
     assert 'input="pos"' in written and 'input="vel"' in written
     bridged = browser_form(written)
     assert "input=" not in bridged and "actuatorfrcrange" not in bridged
-    before = mujoco.MjModel.from_xml_path(str(folder / "scene.xml"))
-    robot.write_text(bridged)
-    after = mujoco.MjModel.from_xml_path(str(folder / "scene.xml"))
+    before = mujoco.MjModel.from_xml_string(written, assets)
+    after = mujoco.MjModel.from_xml_string(bridged, assets)
     differ = [name for name in dir(before) if not name.startswith("_")
               and isinstance(getattr(before, name), np.ndarray)
               and not np.array_equal(getattr(before, name), getattr(after, name))]
@@ -152,7 +150,7 @@ def test_browser_form_leaves_the_motion_in_python_as_it_was(tmp_path):
 
 
 @needs_node
-def test_the_browser_mujoco_loads_every_practice_and_needs_the_bridge(tmp_path):
+def test_the_browser_mujoco_loads_every_practice_and_convert_output(tmp_path):
     folder = tmp_path / "arm"
     convert(ROOT / "examples/example_3", folder)
     robot = next(p for p in folder.glob("*.xml") if p.name != "scene.xml")
@@ -160,8 +158,10 @@ def test_the_browser_mujoco_loads_every_practice_and_needs_the_bridge(tmp_path):
              for p in folder.rglob("*") if p.is_file()}
     cases = {f"practice{n}": practice_case(n) for n in browser_models.LESSONS}
     cases["converted"] = {"model": "scene.xml", "files": files}
-    cases["bridged"] = {"model": "scene.xml", "files": {
-        **files, robot.name: browser_form(robot.read_text()).encode()}}
+    spec, _ = browser_models.LESSONS[5](5)
+    written, urls = browser_models.model_xml(5, spec)   # as MuJoCo 4.0 writes it
+    cases["raw"] = {"model": "model.xml", "files": {
+        "model.xml": written.encode(), **{p: (ROOT / u).read_bytes() for p, u in urls.items()}}}
     report = load_in_browser_mujoco(cases)
     for practice in browser_models.LESSONS:
         spec, _ = browser_models.LESSONS[practice](practice)
@@ -170,8 +170,8 @@ def test_the_browser_mujoco_loads_every_practice_and_needs_the_bridge(tmp_path):
         assert "error" not in loaded, loaded
         assert (loaded["nq"], loaded["nu"], loaded["nbody"], loaded["timestep"]) == (
             lesson.nq, lesson.nu, lesson.nbody, lesson.opt.timestep), practice
-    assert "input is only available" in report["converted"]["error"]
-    assert report["bridged"]["nu"] == 2
+    assert "error" not in report["converted"], "sw2sim convert writes the browser's form"
+    assert "input is only available" in report["raw"]["error"]
 
 
 @needs_node
