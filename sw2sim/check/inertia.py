@@ -472,8 +472,8 @@ def _placement(ctx, link, inertial: Inertial) -> None:
         volume, what = hull_volume(points), f"the convex hull of its {kind} geometry (the " \
             "mesh is not closed)"
     density = inertial.mass / volume if volume > 0 else None
-    low, high = DENSITY_RANGE
-    if density is not None and not low <= density <= high:
+    low, high = DENSITY_RANGE   # with the noise of the volume's last digits (1e-9)
+    if density is not None and not low * (1 - 1e-9) <= density <= high * (1 + 1e-9):
         ctx.add("density-implausible", f'link "{name}": {inertial.mass:.4g} kg in '
                 f"{volume * 1e6:.4g} cm^3 of {what} makes {_density(density)} kg/m^3 "
                 "(aluminium: 2,700, steel: 7,850)",
@@ -482,7 +482,12 @@ def _placement(ctx, link, inertial: Inertial) -> None:
 
 
 def _density(value: float) -> str:
-    return f"{value:,.0f}" if value >= 10 else f"{value:.3g}"
+    """To the unit (3 digits below 10), or with the digits that put it outside the range."""
+    shown = f"{value:,.0f}" if value >= 10 else f"{value:.3g}"
+    for digits in range(4, 18):
+        if DENSITY_RANGE[0] <= float(shown.replace(",", "")) <= DENSITY_RANGE[1]:
+            shown = f"{value:.{digits}g}"
+    return shown
 
 
 def _distance_outside(points: np.ndarray, centre: np.ndarray) -> float:

@@ -156,6 +156,12 @@ def test_a_shortfall_below_the_fourth_digit_is_printed_with_the_digits_that_show
     assert "1.702e-10 is less than 1.70200001e-10" in finding.message
 
 
+def test_a_density_just_outside_the_range_reads_outside_it():
+    from sw2sim.check.inertia import _density
+    assert _density(99.6) == "99.6" and _density(25_000.4) == "25000.4"
+    assert _density(30_000.2) == "30,000" and _density(0.5) == "0.5"
+
+
 def test_an_all_zero_inertia_on_a_moving_link_is_an_error(tmp_path):
     package = copy_example(1, tmp_path)
     edit_re(urdf_of(package), r'(name="front_left_wheel">.*?<inertia)\s.*?/>',
