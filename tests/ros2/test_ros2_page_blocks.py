@@ -108,6 +108,16 @@ def _arm_follows_setpoints(record: dict) -> None:
     page = "_pages/practice-3/06-ros2.md"
     tolerance = _page_number(page, r"stays within ([\d.]+) rad of its set point")
     arrive = _page_number(page, r"From ([\d.]+) s after the set point to the next one")
+    # The timer counts from the clock's 0, not from the node's start: every set point but
+    # the first (which comes at once from a node started past the first period) falls on
+    # the period's grid, within the node's 10 ms tick of /clock.
+    period = _page_number(page, r"fires every ([\d.]+) s of the simulation's clock")
+    assert "counted from the clock's 0 and not from the node's start" in _page_text(page)
+    for topic in ("/middle_arm_controller/joint_trajectory", "/end_arm_controller/joint_trajectory"):
+        times = [ts for ts, _ in record["topics"][topic]]
+        assert len(times) >= 2, (topic, times)
+        off = [ts for ts in times[1:] if abs(ts - period * round(ts / period)) > 0.02]
+        assert not off, (topic, times)
     checked = 0
     for topic, joint in (("/middle_arm_controller/joint_trajectory", "middle_arm_joint"),
                          ("/end_arm_controller/joint_trajectory", "end_arm_joint")):
