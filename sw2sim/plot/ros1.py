@@ -20,6 +20,7 @@ NAME = "ROS 1"
 NUMBERS = {"int8", "uint8", "int16", "uint16", "int32", "uint32", "int64", "uint64",
            "float32", "float64", "byte", "char"}
 CONNECT_TIMEOUT = 2.0   # s for the master's port to answer
+QUEUE = 10_000          # messages held for a busy plotter to catch up on
 
 
 def master_uri() -> str:
@@ -112,7 +113,7 @@ class Source:
     def subscribe(self, topic: str, kind: str, on_message) -> None:
         self._node()
         self.subscribers.append(self.rospy.Subscriber(topic, self._class(kind), on_message,
-                                                      queue_size=100))
+                                                      queue_size=QUEUE))
 
     def now(self) -> float:
         return self.rospy.get_time()

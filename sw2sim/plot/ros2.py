@@ -21,6 +21,7 @@ import threading
 from .fields import PlotError, Slot
 
 NAME = "ROS 2"
+QUEUE = 10_000   # messages a subscription holds until the plot takes them
 NUMBERS = {"float", "double", "long double", "char", "octet", "int8", "uint8", "int16",
            "uint16", "int32", "uint32", "int64", "uint64"}
 
@@ -128,7 +129,9 @@ class Source:
 
     def _qos(self, topic: str):
         from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
-        qos = QoSProfile(depth=100)
+        # deep enough for a slow or busy plotter to catch up on a simulation that runs
+        # far faster than real time (rqt_plot keeps 10: it draws the newest, not each one)
+        qos = QoSProfile(depth=QUEUE)
         publishers = self.node.get_publishers_info_by_topic(topic)
         if publishers:
             every = lambda test: all(test(p.qos_profile) for p in publishers)  # noqa: E731
