@@ -77,15 +77,17 @@ def run(options: Options, say=print) -> int:
     ros = choose(options.ros, say)
     if ros is None:
         return EXIT_UNUSABLE
-    # matplotlib takes a second or more to import: while the topics are awaited, not after
-    # Ctrl-C, when the reader (or a terminal closing) waits for the PNG
-    threading.Thread(target=_import_drawing, daemon=True).start()
+    if ros.NAME == "ROS 2":
+        ros.prepare()   # (which may start the process again)
     live = output is None and options.live
     if output is None and not live:
         output = default_png(names)
         say(f"sw2sim plot: no display: the plot goes to {output} when it ends")
-    if ros.NAME == "ROS 2":
-        ros.prepare()
+    if not live:
+        # matplotlib takes a second or more to import: while the topics are awaited, not
+        # after Ctrl-C, when the reader (or a terminal closing) waits for the PNG. (A live
+        # window imports it at once, in this thread.)
+        threading.Thread(target=_import_drawing, daemon=True).start()
     stop = {"signal": None}
 
     def ctrl_c(signum, frame):
