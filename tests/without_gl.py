@@ -2,8 +2,9 @@
 reader's Windows or macOS machine (or a Linux machine without libosmesa6) has it.
 
 - `MUJOCO_GL` is not set;
-- a `sitecustomize` module, first on PYTHONPATH, makes `ctypes.util.find_library` blind to
-  OSMesa and EGL (how sw2sim/gl.py looks for OSMesa), and writes a line to a log for each
+- a `sitecustomize` module, first on PYTHONPATH, makes `ctypes.util.find_library` and the
+  listings of folders blind to OSMesa and EGL (how sw2sim/gl.py looks for OSMesa: in the
+  library folders, then with ctypes' search), and writes a line to a log for each
   process it is loaded in, so a test can tell that the processes it cared about had it;
 - `desktop=True` gives a DISPLAY at which no X server listens: `sw2sim` leaves MUJOCO_GL
   unset, as it does on Windows and macOS, and any attempt to draw fails, since MuJoCo's own
@@ -30,6 +31,15 @@ def find_library(name):
 
 
 ctypes.util.find_library = find_library
+_listdir = os.listdir
+
+
+def listdir(path="."):
+    """A folder's names without the off-screen GL libraries' files."""
+    return [n for n in _listdir(path) if not str(n).startswith(("libOSMesa", "libEGL"))]
+
+
+os.listdir = listdir
 _log = os.environ.get("WITHOUT_GL_LOG")
 if _log:
     with open(_log, "a", encoding="utf-8") as f:

@@ -50,3 +50,6 @@ def test_the_hook_hides_osmesa(tmp_path):
     done = subprocess.run([sys.executable, "-c", "import ctypes.util; print(ctypes.util.find_library('OSMesa'))"],
                           env=env, capture_output=True, text=True, timeout=60, check=True)
     assert done.stdout.strip() == "None"
+    done = subprocess.run([sys.executable, "-c", "from sw2sim import gl; print(gl.osmesa_installed())"],
+                          env=env, capture_output=True, text=True, timeout=60, check=True)
+    assert done.stdout.strip() == "False"
