@@ -275,31 +275,38 @@
       markAll();
     }
 
-    // Which blocks have a line too long for their box: measured with the lines kept.
-    var wrapped = storedWrap();
-    root.classList.remove("code-wrap");
+    // Which blocks have a line too long for their box, measured with the lines kept: at
+    // the start, once the fonts are in and when the window changes (a turned phone).
+    function addButtons() {
+      var on = root.classList.contains("code-wrap");
+      root.classList.remove("code-wrap");
+      pres.forEach(function (pre) {
+        var header = pre.closest("div.highlighter-rouge").querySelector(".code-header");
+        if (!header || header.querySelector(".wrap-button")) return;
+        if (pre.scrollWidth - pre.clientWidth <= 1) return;
+        var button = document.createElement("button");
+        button.type = "button";
+        button.className = "wrap-button";
+        button.textContent = "Wrap";
+        button.title = "Wrap long lines in every code block (remembered on this site)";
+        button.addEventListener("click", function () {
+          var wrap = !root.classList.contains("code-wrap");
+          storeWrap(wrap);
+          setWrap(wrap);
+        });
+        header.insertBefore(button, header.querySelector(".copy-button"));
+        buttons.push(button);
+      });
+      setWrap(on);
+    }
+
     pres.forEach(function (pre) {
       pre.addEventListener("scroll", function () { mark(pre); }, { passive: true });
-      if (pre.scrollWidth - pre.clientWidth <= 1) return;
-      var header = pre.closest("div.highlighter-rouge").querySelector(".code-header");
-      if (!header) return;
-      var button = document.createElement("button");
-      button.type = "button";
-      button.className = "wrap-button";
-      button.textContent = "Wrap";
-      button.title = "Wrap long lines in every code block (remembered on this site)";
-      button.addEventListener("click", function () {
-        var on = !root.classList.contains("code-wrap");
-        storeWrap(on);
-        setWrap(on);
-      });
-      var copy = header.querySelector(".copy-button");
-      header.insertBefore(button, copy);
-      buttons.push(button);
     });
-    setWrap(wrapped);
-    if (document.fonts) document.fonts.ready.then(markAll);
-    window.addEventListener("resize", markAll);
+    root.classList.toggle("code-wrap", storedWrap());
+    addButtons();
+    if (document.fonts) document.fonts.ready.then(addButtons);
+    window.addEventListener("resize", addButtons);
   }
 
   // ---- Checklists a reader can tick -----------------------------------------------

@@ -264,3 +264,27 @@ def test_a_blocks_output_is_as_wide_as_the_block(browser_page):
     assert pairs, "no block output on /practice-1/modelling/"
     for code_left, code_right, out_left, out_right in pairs:
         assert abs(code_left - out_left) < 1 and abs(code_right - out_right) < 1, pairs
+
+
+def test_the_wrap_button_wraps_every_code_block_and_the_site_remembers(browser_page):
+    """On a phone, Wrap on one page's block wraps every block of the page, and of the next
+    page visited (localStorage); pressed again, the blocks scroll again there too."""
+    page = browser_page.page
+    scrolling = """() => [...document.querySelectorAll('div.highlighter-rouge:not(.language-text) pre')]
+        .filter(pre => pre.scrollWidth > pre.clientWidth + 1).length"""
+    try:
+        page.set_viewport_size(SIZES[390])
+        browser_page.visit("/practice-2/friction/")
+        assert page.evaluate(scrolling) > 0, "no code block scrolls on a phone: nothing to wrap"
+        page.locator(".wrap-button").first.click()
+        assert page.evaluate(scrolling) == 0
+        assert page.locator(".wrap-button").first.get_attribute("aria-pressed") == "true"
+        browser_page.visit("/practice-1/custom-node/")
+        assert page.evaluate(scrolling) == 0, "the next page forgot the choice"
+        assert page.locator(".wrap-button").count() > 0, "no Wrap button to undo it with"
+        page.locator(".wrap-button").first.click()
+        browser_page.visit("/practice-1/custom-node/")
+        assert page.evaluate(scrolling) > 0, "Wrap pressed again did not stick"
+    finally:
+        page.evaluate("localStorage.clear()")
+        page.set_viewport_size({"width": 1280, "height": 800})
