@@ -90,7 +90,7 @@ def _plotted_as_heard(plot: subprocess.Popen, heard: dict, folder: Path) -> None
     middle joint's position at the same step; each set point is one the node sent."""
     said, _ = plot.communicate(timeout=60)
     png = folder / "arm.png"
-    assert plot.returncode == 0 and f"wrote {png}" in said, said
+    assert plot.returncode == 0 and f"wrote {png}" in said and "Traceback" not in said, said
     series: dict[str, list] = {}
     for row in csv.DictReader((folder / "arm.csv").open()):
         series.setdefault(row["series"], []).append(
