@@ -277,11 +277,16 @@ def test_ctrl_c_ends_the_run_and_still_writes_the_png(tmp_path, monkeypatch):
     source = FakeSource()
     monkeypatch.setattr(plot_run, "choose", lambda ros, say: fake_ros(source))
     said = []
+    # (a Ctrl-C that came after the run ended must not end the test session)
+    before = signal.signal(signal.SIGINT, lambda signum, frame: None)
     timer = threading.Timer(0.5, os.kill, (os.getpid(), signal.SIGINT))
-    timer.start()
-    status = plot_run.run(plot_run.Options(["/joint_states/position[0]"],
-                                           output=tmp_path / "p.png"), say=said.append)
-    timer.join()
+    try:
+        timer.start()
+        status = plot_run.run(plot_run.Options(["/joint_states/position[0]"],
+                                               output=tmp_path / "p.png"), say=said.append)
+    finally:
+        timer.join()
+        signal.signal(signal.SIGINT, before)
     assert status == 0 and source.closed
     assert (tmp_path / "p.png").is_file() and f"wrote {tmp_path / 'p.png'}" in said[-1]
 
