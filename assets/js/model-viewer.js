@@ -21,7 +21,7 @@ const NO_WEBGL = "Your browser cannot draw 3D graphics here (WebGL 2 is turned o
 const LOAD_FAILED = "The 3D model could not be loaded, so this is a still picture of it "
   + "instead.";
 
-function webgl2Available() {
+export function webgl2Available() {
   try {
     return document.createElement("canvas").getContext("webgl2") !== null;
   } catch {
@@ -134,7 +134,7 @@ function addSlider(viewer, joint, index, onChange) {
 
 // Places the camera on VIEW_DIRECTION from the centre of the box, as close as it can be
 // with every corner of the box inside the picture.
-function fitCamera(THREE, camera, box) {
+export function fitCamera(THREE, camera, box) {
   const center = box.getCenter(new THREE.Vector3());
   const direction = new THREE.Vector3(...VIEW_DIRECTION).normalize();
   camera.position.copy(center).add(direction);

@@ -6,7 +6,8 @@
 // (One difference of the bindings: `model.jnt(name).qposadr` is a number here, where
 // Python's `model.joint(name).qposadr` is an array of one.)
 //
-// Messages in:  load {vendor, lesson, site}, play, pause, reset, set {name, value},
+// Messages in:  load {vendor, lesson, site}, own {vendor, files, scene} (a dropped model),
+//               play, pause, reset, set {name, value},
 //               run {seconds, id} (steps as fast as it can, for the tests and the benchmark)
 // Messages out: progress {loaded, total}, ready {joints, lesson, inputs, free}, frame
 //               {time, qpos, speed, trace, ran: the id of the run it ends}, error {message}
@@ -178,6 +179,10 @@ function applyInputs() {
       model.dof_frictionloss[wheelDofs[i]] = inputs[`friction:${joint}`];
     });
   }
+  if (lesson.kind === "own") {
+    const ctrl = data.ctrl;
+    for (const s of lesson.sliders) ctrl[s.actuator] = inputs[`ctrl:${s.actuator}`];
+  }
   if (lesson.kind === "car") {   // Car.command: the steering actuator's set point
     const [low, high] = lesson.steering_range;
     data.ctrl[lesson.actuator[lesson.steering]] = clamp(inputs.steering, low, high);
@@ -191,6 +196,7 @@ function applyInputs() {
 }
 
 function traced() {
+  if (lesson.kind === "own") return [];
   if (lesson.kind === "car") return [...pose(), data.qpos[steeringQpos]];
   if (lesson.kind === "pulse") {
     const qvel = data.qvel;
@@ -224,6 +230,9 @@ function step() {
 function defaults() {
   const values = {};
   if (lesson.kind === "car") return { ...lesson.start };
+  if (lesson.kind === "own") {
+    return Object.fromEntries(lesson.sliders.map((s) => [`ctrl:${s.actuator}`, s.start]));
+  }
   if (lesson.kind === "pulse") {
     values.period = lesson.period;
     values.pulse = lesson.pulse;
@@ -260,8 +269,18 @@ function reset() {
 function frame(speed, ran = null) {
   const sent = trace;
   trace = [];
-  postMessage({ type: "frame", time: data.time, qpos: Float64Array.from(data.qpos), speed,
-    trace: sent, ran });
+  const message = { type: "frame", time: data.time, qpos: Float64Array.from(data.qpos), speed,
+    trace: sent, ran };
+  if (lesson.kind === "own") {   // where each drawn geom is: position, then rotation matrix
+    const xpos = data.geom_xpos;
+    const xmat = data.geom_xmat;
+    message.poses = new Float64Array(12 * lesson.drawn.length);
+    lesson.drawn.forEach((g, i) => {
+      message.poses.set(xpos.subarray(3 * g, 3 * g + 3), 12 * i);
+      message.poses.set(xmat.subarray(9 * g, 9 * g + 9), 12 * i + 3);
+    });
+  }
+  postMessage(message);
 }
 
 // ---- Real time --------------------------------------------------------------------------
@@ -343,18 +362,18 @@ function writeFile(path, content) {
   mujoco.FS.writeFile(path, content);
 }
 
-async function load({ vendor, lesson: lessonUrl, site }) {
-  const [wasmBinary, { default: loadMujoco }, built] = await Promise.all([
-    fetchWasm(vendor), import(`${vendor}/mujoco.js`),
-    fetch(lessonUrl).then((r) => r.json())]);
-  mujoco = await loadMujoco({ wasmBinary });
-  const files = await Promise.all(Object.entries(built.files).map(
-    async ([path, url]) => [path, await fetchBytes(`${site}/${url}`)]));
-  for (const [path, bytes] of files) writeFile(`/model/${path}`, bytes);
-  writeFile("/model/model.xml", built.model);
-  model = mujoco.MjModel.from_xml_path("/model/model.xml");
+async function loadMujoco(vendor) {
+  if (mujoco) return;
+  const [wasmBinary, { default: factory }] = await Promise.all([
+    fetchWasm(vendor), import(`${vendor}/mujoco.js`)]);
+  mujoco = await factory({ wasmBinary });
+}
+
+// Starts the lesson on the loaded `model`: its settings, the inputs' defaults, the ready
+// message (with `extra`, what the page needs besides) and the first frame.
+function begin(settings, version, extra = {}) {
   data = new mujoco.MjData(model);
-  lesson = built.lesson;
+  lesson = settings;
   const option = model.opt;   // a copy on MuJoCo's heap: read once, then freed
   timestep = option.timestep;
   option.delete();
@@ -373,14 +392,37 @@ async function load({ vendor, lesson: lessonUrl, site }) {
     joint.delete();
   }
   postMessage({ type: "ready", joints, lesson, inputs, timestep, free: hasFreeBase(),
-    version: built.mujoco.browser });
+    version, ...extra });
   frame(0);
+}
+
+async function load({ vendor, lesson: lessonUrl, site }) {
+  const [, built] = await Promise.all([loadMujoco(vendor),
+    fetch(lessonUrl).then((r) => r.json())]);
+  const files = await Promise.all(Object.entries(built.files).map(
+    async ([path, url]) => [path, await fetchBytes(`${site}/${url}`)]));
+  for (const [path, bytes] of files) writeFile(`/model/${path}`, bytes);
+  writeFile("/model/model.xml", built.model);
+  model = mujoco.MjModel.from_xml_path("/model/model.xml");
+  begin(built.lesson, built.mujoco.browser);
+}
+
+// A model the reader dropped on "Your own model" (assets/js/own-model.js): its files,
+// checked and given a slider per joint by own-model-loading.js.
+async function loadOwn({ vendor, files, scene }) {
+  await loadMujoco(vendor);
+  const { prepare } = await import("./own-model-loading.js");
+  if (model) { data.delete(); model.delete(); }
+  const prepared = prepare(mujoco, files, scene, writeFile);
+  model = prepared.model;
+  begin(prepared.lesson, prepared.version, { geoms: prepared.geoms });
 }
 
 onmessage = async ({ data: message }) => {
   try {
     switch (message.type) {
       case "load": await load(message); break;
+      case "own": pause(); await loadOwn(message); break;
       case "play": play(); break;
       case "pause": pause(); frame(0); break;
       case "reset": pause(); reset(); frame(0); break;
