@@ -6,6 +6,7 @@ file and the command to run; nothing is sent anywhere.
 """
 
 import re
+import shutil
 import zipfile
 
 import mujoco
@@ -14,6 +15,7 @@ import pytest
 
 import axe_audit
 from repository import ROOT
+from sw2sim.cli import main as cli
 from sw2sim.convert import convert
 
 PAGE = "/reference/your-own-model/"
@@ -140,3 +142,35 @@ def test_the_dropped_model_view_is_accessible(site, browser_page, arm, tmp_path)
     violations = axe_audit.serious(axe_audit.collect(browser_page.page))
     assert not visit.problems(), visit.problems()
     assert not violations, violations
+
+
+def test_a_converted_raw_export_simulates(site, browser_page, tmp_path):
+    """The raw export of Your own model (examples/Arm_Assembly), with the page's one fix
+    (the empty mesh replaced) and convert's repairs: a free base, two joints without limits
+    or actuators. It stands on the floor under gravity as in MuJoCo 4.0, its two joints get a
+    velocity slider each."""
+    package = tmp_path / "Arm_Assembly"
+    shutil.copytree(ROOT / "examples/Arm_Assembly", package)
+    shutil.copy(ROOT / "examples/example_3/meshes/end_arm_link.STL",
+                package / "meshes/end_arm_link.STL")
+    folder = tmp_path / "arm_repaired"
+    assert cli(["convert", str(package), "-o", str(folder)]) == 0
+    found = {}
+
+    def steps(page):
+        drop(page, folder, kind="folder")
+        page.evaluate("() => document.querySelector('.own-model').simulation.ready")
+        page.get_by_role("button", name="Reset the simulation").click()
+        page.evaluate("() => document.querySelector('.own-model').simulation.run(1)")
+        found["qpos"] = page.evaluate("() => document.querySelector('.own-model').simulation.qpos()")
+
+    visit = browser_page.visit(PAGE, then=steps)
+    assert not visit.problems(), visit.problems()
+    labels = browser_page.page.locator(".own-model-joint label").all_text_contents()
+    assert labels == ["middle_arm_joint (velocity, rad/s)", "end_arm_joint (velocity, rad/s)"]
+    model = mujoco.MjModel.from_xml_path(str(folder / "scene.xml"))
+    data = mujoco.MjData(model)
+    mujoco.mj_step(model, data, nstep=round(1 / model.opt.timestep))
+    qpos = np.array(found["qpos"])
+    assert np.isfinite(qpos).all() and len(qpos) == model.nq
+    assert qpos[2] == pytest.approx(data.qpos[2], abs=1e-4), "the base's height on the floor"
