@@ -21,7 +21,10 @@ default set), `ros` (the whole test suite as `make test` runs it, with and witho
 what the ROS tests add; not in the default set, it takes some ten minutes), `ros2` (the
 same for tests/ros2 and tests/tool/port, the ROS 2 tests), `browser` (each practice's
 Simulate mode in headless Chromium on the built site: download, time to the first simulated
-frame, real-time factor; not in the default set).
+frame, real-time factor; not in the default set), `ctrl-c` (each lesson node that runs until
+Ctrl-C, stopped 50 times with SIGINT beside `sw2sim ros2` and two busy processes, counting
+the stops that printed a traceback or ended with another status than 0: they must be none;
+not in the default set, some five minutes).
 
 Figures, not assertions: compare them before and after a change (2-core machines are the
 target). Each line shows CPU seconds as well as wall-clock seconds: on a busy machine the
@@ -195,6 +198,69 @@ def ros2() -> None:
     """What the ROS 2 tests add to `make test`: tests/ros2 (the stand-in, the pages' rclpy
     nodes) and tests/tool/port (the ported packages, built with colcon)."""
     _share_of(["tests/ros2", "tests/tool/port"], "the ROS 2 tests")
+
+
+CTRL_C_STOPS = 50
+
+
+def ctrl_c() -> None:
+    """Each lesson node that runs until Ctrl-C (tests/ros2/ctrl_c.py), in its ported package
+    against `sw2sim ros2`, stopped CTRL_C_STOPS times with SIGINT at a random moment of its
+    loop, while two processes keep both cores busy."""
+    import random
+    import signal
+    sys.path[:0] = [str(ROOT / "tests"), str(ROOT / "tests" / "ros2")]
+    import ctrl_c as stops
+    import ros2_domains
+    from course.snippets.ros2 import node_blocks
+    from sw2sim.port import port
+    from sw2sim.ros2.discovery import environment
+    python = ROOT / ".venv-ros2" / "bin" / "python"
+    if not python.exists():
+        print("== ctrl-c: no .venv-ros2 (make setup)\n")
+        return
+    section = Section(f"ctrl-c: each lesson node stopped {CTRL_C_STOPS} times, 2 busy processes")
+    blocks = node_blocks(ROOT)
+    wheels = "front_left_joint,front_right_joint,rear_left_joint,rear_right_joint"
+    busy = [subprocess.Popen([sys.executable, "-c", "while True: pass"]) for _ in range(2)]
+    rng = random.Random(1)
+    failed = 0
+    try:
+        with tempfile.TemporaryDirectory() as top:
+            for package, file in stops.NODES:
+                folder = Path(top) / package
+                port(ROOT / "examples" / package, folder,
+                     effort_joints=[wheels] if package == "example_1" else ())
+                node = folder / file
+                node.parent.mkdir(parents=True, exist_ok=True)
+                node.write_text(blocks[f"{package}/{file}"].code, encoding="utf-8")
+                command = [str(python), str(node), "--ros-args", "-p", "use_sim_time:=true"]
+                domain = ros2_domains.claim()
+                env = environment(domain.id, {**ORIGINAL_ENVIRONMENT, "PYTHONUNBUFFERED": "1",
+                                              "ROS_HOME": str(Path(top) / "ros")})
+                standin = subprocess.Popen([str(python), "-m", "sw2sim", "ros2", str(folder),
+                                            "--realtime", "1"], env=env, start_new_session=True,
+                                           stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+                faults = []
+                try:
+                    section.timed(f"{package}/{file}", lambda: faults.extend(
+                        f for f in (stops.stop_once(command, env, folder, rng)
+                                    for _ in range(CTRL_C_STOPS)) if f))
+                finally:
+                    os.killpg(standin.pid, signal.SIGINT)
+                    standin.wait(timeout=20)
+                    domain.release()
+                print(f"    {len(faults)} of {CTRL_C_STOPS} stops printed a traceback or ended "
+                      "with another status than 0", flush=True)
+                for fault in faults[:3]:
+                    print("    " + fault[-1500:].replace("\n", "\n    "))
+                failed += len(faults)
+    finally:
+        for process in busy:
+            process.kill()
+            process.wait()
+    section.total()
+    print(f"{'stops with a fault, all nodes':60} {failed}\n")
 
 
 def _sw2sim(*args: str, python: str = sys.executable) -> subprocess.CompletedProcess:
@@ -449,7 +515,7 @@ def browser() -> None:
 
 SECTIONS = {"commands": commands, "models": models, "drawings": drawings, "pages": pages, "figures": figures,
             "tests": tests, "runner": runner, "ros": ros, "ros2": ros2, "load": load,
-            "browser": browser}
+            "browser": browser, "ctrl-c": ctrl_c}
 
 
 def main(argv: list[str]) -> int:
