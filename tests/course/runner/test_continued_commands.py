@@ -15,13 +15,16 @@ from course.snippets.parse import Block
 from course.snippets.ros import commands
 from repository import ROOT
 
-# Only plain words are handed to bash: nothing it would expand, run or redirect.
-PLAIN = re.compile(r"[^$`;|&<>()*?!\\]*")
+# Only plain words are handed to bash: nothing it would run or redirect. A variable
+# ($SW2SIM_COURSE) and ~ are kept as written: bash is given each as its own name.
+PLAIN = re.compile(r"(?:[^$`;|&<>()*?!\\]|\$[A-Za-z_]\w*)*")
+VARIABLE = re.compile(r"\$([A-Za-z_]\w*)")
 
 
 def bash_words(lines: str) -> list[str]:
-    done = subprocess.run(["bash", "-c", f'printf "%s\\0" {lines}'], capture_output=True, text=True,
-                          timeout=10, check=True)
+    env = {name: f"${name}" for name in VARIABLE.findall(lines)} | {"HOME": "~"}
+    done = subprocess.run(["bash", "--norc", "-c", f'printf "%s\\0" {lines}'], capture_output=True,
+                          text=True, timeout=10, check=True, env=env)
     return done.stdout.split("\0")[:-1]
 
 
