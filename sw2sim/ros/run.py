@@ -23,8 +23,9 @@ import subprocess
 import sys
 import time
 import urllib.parse
-import xmlrpc.client
 from pathlib import Path
+
+from . import wire
 
 DEBIAN = ("python3-rospy python3-roslaunch python3-rostopic python3-rosservice python3-rosnode "
           "rosout python3-std-msgs python3-std-srvs python3-sensor-msgs python3-rosgraph-msgs "
@@ -42,26 +43,6 @@ def missing() -> str | None:
     return ("ROS 1 is not installed. On Debian 12: sudo apt install " + DEBIAN + "; then make "
             "Debian's rospy visible to this Python (`make setup` does both in a clone of the "
             "course). Other systems: ROS 1 needs Debian 12, Ubuntu 20.04 or WSL2 with one of them.")
-
-
-ANSWER_TIMEOUT = 3.0   # s for a master to answer; what holds a port and never answers is none
-
-
-class _Timed(xmlrpc.client.Transport):
-    def make_connection(self, host):
-        connection = super().make_connection(host)
-        connection.timeout = ANSWER_TIMEOUT
-        return connection
-
-
-def _answers(uri: str) -> bool:
-    """A ROS master answers at `uri` (rosgraph's is_online asks without a time limit, and
-    waits for ever on a port whose holder accepts and says nothing)."""
-    try:
-        code, _, _ = xmlrpc.client.ServerProxy(uri, transport=_Timed()).getPid("/sw2sim")
-    except (OSError, ValueError, xmlrpc.client.Error):
-        return False
-    return code == 1
 
 
 def _free(port: int) -> bool:
@@ -353,7 +334,7 @@ class _Run:
         status to return, or None for the verdict on the launch."""
         env = self.env
         given = uri = env.get("ROS_MASTER_URI")
-        if not uri or not _answers(uri):
+        if not uri or not wire.master_answers(uri):
             port, told = master_address(uri)
             for line in told:
                 self.tell(f"sw2sim ros: {line}")
@@ -363,7 +344,7 @@ class _Run:
                                                  stdout=subprocess.DEVNULL,
                                                  stderr=subprocess.DEVNULL))
             deadline = time.monotonic() + 15
-            while not _answers(uri):
+            while not wire.master_answers(uri):
                 if time.monotonic() > deadline:
                     self.tell("sw2sim ros: roscore did not start")
                     return 2

@@ -27,6 +27,28 @@ class RosError(Exception):
     """The master or a service said no, or did not answer in time."""
 
 
+# -- the master ------------------------------------------------------------------------------
+ANSWER_TIMEOUT = 3.0   # s for a master to answer; what holds a port and never answers is none
+
+
+class _Timed(xmlrpc.client.Transport):
+    def make_connection(self, host):
+        connection = super().make_connection(host)
+        connection.timeout = ANSWER_TIMEOUT
+        return connection
+
+
+def master_answers(uri: str) -> bool:
+    """A ROS master answers at `uri` within ANSWER_TIMEOUT (rosgraph's is_online asks
+    without a time limit, and waits for ever on a port whose holder accepts and says
+    nothing)."""
+    try:
+        code, _, _ = xmlrpc.client.ServerProxy(uri, transport=_Timed()).getPid("/sw2sim")
+    except (OSError, ValueError, xmlrpc.client.Error):
+        return False
+    return code == 1
+
+
 # -- packing, as genpy does (little-endian) -------------------------------------------------
 
 def string(text: str) -> bytes:

@@ -29,7 +29,7 @@ PYPROJECT = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))
 # ROS 1 comes from Debian, never from pip: the lessons' ROS nodes import these.
 ROS_MODULES = {"rospy", "std_msgs", "sensor_msgs", "geometry_msgs", "gazebo_msgs", "std_srvs",
                "control_msgs", "trajectory_msgs", "rosgraph", "roslaunch", "tf2_msgs",
-               "rosgraph_msgs", "controller_manager_msgs"}
+               "rosgraph_msgs", "controller_manager_msgs", "rostopic"}
 # ROS 2 comes from the `ros2` extra (requirements-ros2.txt), imported only where it is used.
 ROS2_MODULES = {"rclpy", "builtin_interfaces", "rosidl_runtime_py", "catkin_pkg",
                 "ament_index_python", "lifecycle_msgs", "rcl_interfaces"}
