@@ -29,6 +29,8 @@ _ROS2_NEEDS = re.compile(r"""(?<![\w-])data-ros2-needs\s*=\s*(?:"(?P<dq>[^"]*)"|
 _ROS_LANGUAGES = (LANGUAGE, "bash")
 _TERMINAL = re.compile(r"""(?<![\w-])data-terminal\s*=\s*(?:"(?P<dq>[^"]*)"|'(?P<sq>[^']*)')""")
 _ROS_SETUP = re.compile(r"(?<![\w-])data-ros-setup(?![\w-])")
+_ROS2_SETUP = re.compile(r"(?<![\w-])data-ros2-setup(?![\w-])")
+_ROS2_ONCE = re.compile(r"(?<![\w-])data-ros2-once(?![\w-])")
 _ROS_RUNNING = re.compile(r"^ros_running\s*:\s*(?P<value>.+?)\s*(?:#.*)?$")
 _DATA_FILE = re.compile(r"""(?<![\w-])data-file\s*=\s*(?:"(?P<dq>[^"]*)"|'(?P<sq>[^']*)')""")
 # An `{% include_code ... %}` tag anywhere in a line; `args` is what follows the name.
@@ -60,7 +62,7 @@ class Block:
     # its `data-ros2="PACKAGE"`: it runs under ROS 2 with the package `sw2sim port` wrote
     ros2: str | None = None
     language: str = LANGUAGE
-    # its `data-terminal="N"`: the reader's terminal a ROS 1 command block is typed in (1 is
+    # its `data-terminal="N"`: the reader's terminal a ROS command block is typed in (1 is
     # the first; a number not used before is a new terminal, opened as Getting started says)
     terminal: int = 1
 
@@ -108,6 +110,11 @@ class Page:
     # A ```bash block marked `data-ros-setup`: what every new terminal runs before a ROS 1
     # command (Getting started has it; the ROS page runner opens each terminal with it).
     ros_setup: Block | None = None
+    # Getting started's ```bash blocks for the ROS 2 pages: what the reader runs once in the
+    # clone's folder (`data-ros2-once`), and what every new terminal of a ROS 2 page runs
+    # first (`data-ros2-setup`); the ROS 2 page runner opens its terminals with them.
+    ros2_once: Block | None = None
+    ros2_setup: Block | None = None
     ros2_commands: list[Block] = field(default_factory=list)  # ```bash blocks with data-ros2
     # Blocks of any language marked data-ros2-needs="WHAT": (block, WHAT). Shown, not run.
     ros2_needs: list[tuple[Block, str]] = field(default_factory=list)
@@ -256,8 +263,15 @@ class _Scan:
                 code = without_raw_tags(token.content)
                 self.page.ros2_commands.append(Block(self.page.path, start + 2, code,
                                                      fence=(start, end), attributes=end,
-                                                     ros2=ros2, language="bash"))
+                                                     ros2=ros2, language="bash",
+                                                     terminal=self.terminal(ial, end)))
                 continue
+            for pattern, name in ((_ROS2_ONCE, "ros2_once"), (_ROS2_SETUP, "ros2_setup")):
+                if info == "bash" and ial and pattern.search(ial["body"]):
+                    setattr(self.page, name, Block(self.page.path, start + 2,
+                                                   without_raw_tags(token.content),
+                                                   fence=(start, end), attributes=end,
+                                                   language="bash"))
             if info == "bash" and ial and _ROS_SETUP.search(ial["body"]):
                 self.page.ros_setup = Block(self.page.path, start + 2,
                                             without_raw_tags(token.content), fence=(start, end),

@@ -2,8 +2,20 @@
 with this site's tools would: `sw2sim port` writes the ROS 2 package, `sw2sim ros2` runs
 it with MuJoCo in Gazebo Sim's place, and the page's rclpy nodes talk to it.
 
+The reader's terminals are modelled one by one, as course.snippets.ros does for ROS 1: a
+block is typed into terminal 1 unless its `data-terminal="N"` names another, and a block
+typed into a terminal that a running command keeps busy stops it first (Ctrl-C). A terminal
+opens in the reader's home folder with only a login's variables (HOME, PATH, LANG), reads
+~/.bashrc as an interactive bash does, and runs Getting started's line for every ROS 2
+terminal (its block marked `data-ros2-setup`); Getting started's line that the reader runs
+once in the clone's folder (`data-ros2-once`) has run before, when the clone was made. The
+clone holds copies of the example packages and this repository's .venv-ros2; several pages
+can be followed in one clone and one home folder, one after the other (`clone`, `home`), as
+Practice 2's page follows Practice 1's. What the pages create inside the clone is listed by
+`created_in_clone()`.
+
 A ```bash block is split into its commands (course.snippets.ros.commands), each run by
-bash in the session's folder, which holds a copy of the example packages the page ports:
+bash in its terminal:
 
 - `sw2sim ros2 PACKAGE` keeps running, as in a terminal of its own; the runner adds
   `--realtime` (simulated seconds per wall second) unless the page gives it;
@@ -16,8 +28,8 @@ bash in the session's folder, which holds a copy of the example packages the pag
   of the shell (`cd`, `export`) holds for the next.
 
 A ```python block is a node file of a ported package: `data-ros2` names the package (the
-folder `sw2sim port` wrote), `data-file` the file in it. The runner writes the block's
-code there when the page reaches it. A command may start a node that another page shows
+folder `sw2sim port ... -o FOLDER` wrote, found by its name), `data-file` the file in it.
+The runner writes the block's code there when the page reaches it. A command may start a node that another page shows
 (Practice 2 runs Practice 1's); the runner takes its code from that page.
 
 Every process runs with ROS 2 kept on 127.0.0.1 in the session's own domain id, in a
@@ -42,7 +54,7 @@ from typing import Callable
 
 from . import shell
 from .parse import Block, Page, find_pages, parse_page
-from .ros import Command, Running, commands
+from .ros import LOGIN_PATH, SETUP_PAGE, Command, Running, Terminal, commands
 
 # The Python environment the entry page has the reader make for ROS 2 (`make setup` makes
 # it in a clone): ROS 2's message packages share their module names with ROS 1's, so they
@@ -70,21 +82,43 @@ def environment(domain: int, base: dict[str, str]) -> dict[str, str]:
     return ros2_environment(domain, base)
 
 
+def terminal_lines(root: Path) -> tuple[Block, Block]:
+    """Getting started's blocks for the ROS 2 pages: what the reader runs once in the
+    clone's folder, and what every new terminal runs first."""
+    page = parse_page(root / SETUP_PAGE, root)
+    if page.ros2_once is None or page.ros2_setup is None:
+        raise Ros2BlockError(SETUP_PAGE, "no ```bash blocks marked data-ros2-once and "
+                                         "data-ros2-setup: the ROS 2 pages' terminals have "
+                                         "nothing to start from")
+    return page.ros2_once, page.ros2_setup
+
+
+def expand(word: str, env: dict[str, str], cwd: Path) -> Path:
+    """A path word of a command as bash reads it in `env` and `cwd`: `~` and `$NAME`."""
+    if word == "~" or word.startswith("~/"):
+        word = env.get("HOME", "") + word[1:]
+    word = re.sub(r"\$\{(\w+)\}|\$(\w+)", lambda m: env.get(m[1] or m[2], ""), word)
+    return Path(os.path.normpath(cwd / word))
+
+
 @dataclass
 class Session:
-    """One page's ROS 2 blocks in one folder and one ROS 2 domain."""
+    """One page's ROS 2 blocks in the reader's clone and home folder, in one ROS 2 domain."""
 
     page: Page
     root: Path
-    folder: Path      # where the packages are copied and ported, and the logs go
+    folder: Path      # the logs, and (unless given) the clone and the home folder
     domain: int       # ROS_DOMAIN_ID of every process of the page
     realtime: float = REALTIME
-    env: dict[str, str] = field(default_factory=dict)
+    clone: Path | None = None   # the reader's clone: shared by pages followed one after another
+    home: Path | None = None    # the reader's home folder: so is it
+    env: dict[str, str] = field(default_factory=dict)   # terminal 1's, once set up
     ran: list[str] = field(default_factory=list)        # "page.md:line: command"
     started: list[Running] = field(default_factory=list)
     written: dict[str, Block] = field(default_factory=dict)   # node files written, by path
     stopped: list[int] = field(default_factory=list)
-    cwd: Path | None = None
+    terminals: dict[int, Terminal] = field(default_factory=dict)
+    packages: dict[str, Path] = field(default_factory=dict)   # name -> folder ported to
     # Called once `sw2sim ros2` has started, before the next command: it returns when the
     # simulation is up, as a reader looks before starting a node in a second terminal.
     # Without it the runner waits for the stand-in's line naming its controllers.
@@ -98,27 +132,58 @@ class Session:
 
     # -- set-up ------------------------------------------------------------------------
     def prepare(self) -> None:
-        """The folder with a copy of each example package the page ports, the logs, and
-        the environment: the ROS 2 environment's scripts first on PATH (`python`,
-        `sw2sim`), as activating it does."""
+        """The reader's clone (a copy of each example package the page ports, and this
+        repository's .venv-ros2), made once, with Getting started's once-only line run in
+        it; the home folder; terminal 1, opened and set up."""
         if self.env:
             return
-        self.folder.mkdir(parents=True, exist_ok=True)
+        self.clone = self.clone or self.folder / "clone"
+        self.home = self.home or self.folder / "home"
         for block in self.page.ros2_commands:
             for command in commands(block):
                 source = ported_source(command)
-                if source and not (self.folder / source).exists():
-                    shutil.copytree(self.root / source, self.folder / source)
+                if source and not (self.clone / source).exists():
+                    shutil.copytree(self.root / source, self.clone / source)
+        self.clone.mkdir(parents=True, exist_ok=True)
+        venv = self.clone / ENVIRONMENT
+        if not venv.exists():
+            venv.symlink_to(self.root / ENVIRONMENT, target_is_directory=True)
+        self.home.mkdir(parents=True, exist_ok=True)
         self.logs = self.folder / "logs"
-        self.logs.mkdir(exist_ok=True)
-        home = self.folder / "home"
-        home.mkdir(exist_ok=True)
-        bin_dir = str(self.root / ENVIRONMENT / "bin")
-        base = {**os.environ, "PATH": os.pathsep.join([bin_dir, os.environ.get("PATH", "")]),
-                "HOME": str(home), "ROS_HOME": str(home / ".ros"),
-                "ROS_LOG_DIR": str(self.logs / "ros"), "PYTHONUNBUFFERED": "1"}
-        self.env = environment(self.domain, base)
-        self.cwd = self.folder
+        self.logs.mkdir(parents=True, exist_ok=True)
+        once, self.setup = terminal_lines(self.root)
+        done = self.home.parent / f".{self.home.name}-ros2-once"   # beside the home folder
+        if not done.exists():
+            t = Terminal(0, self.clone, self.login())
+            for command in commands(once):
+                self.finish(command, t)
+            done.touch()
+        self.env = self.terminal(1, f"{self.page.path}:1").env
+
+    def login(self) -> dict[str, str]:
+        """A new terminal's variables before it reads ~/.bashrc."""
+        return environment(self.domain, {
+            "HOME": str(self.home), "PATH": LOGIN_PATH, "LANG": "C.UTF-8",
+            "USER": os.environ.get("USER", "reader"), "SHELL": "/bin/bash",
+            # what a terminal shows at once; a log file would get it in blocks
+            "PYTHONUNBUFFERED": "1"})
+
+    def terminal(self, number: int, location: str) -> Terminal:
+        """Terminal `number`, opened in the home folder and set up the first time it is
+        used."""
+        if number in self.terminals:
+            return self.terminals[number]
+        if number > 1 and number - 1 not in self.terminals:
+            raise Ros2BlockError(location, f"terminal {number} before terminal {number - 1}: "
+                                           "number the page's terminals in the order it opens "
+                                           "them")
+        t = Terminal(number, self.home, self.login())
+        self.terminals[number] = t
+        if (self.home / ".bashrc").is_file():   # an interactive bash reads it
+            self.finish(Command("source ~/.bashrc", location, None), t)
+        for command in commands(self.setup):
+            self.finish(command, t)
+        return t
 
     # -- the blocks --------------------------------------------------------------------
     def run(self) -> None:
@@ -127,9 +192,10 @@ class Session:
         self.prepare()
         for block in self.page.ros2_blocks:
             if block.language == "bash":
+                t = self.terminal(block.terminal, block.location)
                 found = commands(block)
                 for k, command in enumerate(found):
-                    self.command(command, last=k == len(found) - 1)
+                    self.command(command, t, first=k == 0, last=k == len(found) - 1)
             else:
                 self.write_node(block)
 
@@ -138,10 +204,10 @@ class Session:
             raise Ros2BlockError(block.location, "a ROS 2 node block names its file in the "
                                                  'package: {: data-ros2="example_1" '
                                                  'data-file="scripts/NODE.py"}')
-        path = self.folder / block.ros2 / block.data_file
-        if not path.parent.parent.is_dir():
+        if block.ros2 not in self.packages:
             raise Ros2BlockError(block.location, f"no package {block.ros2}/ to put "
                                                  f"{block.data_file} in: port it first")
+        path = self.packages[block.ros2] / block.data_file
         path.parent.mkdir(parents=True, exist_ok=True)
         path.write_text(block.code, encoding="utf-8")
         path.chmod(0o755)
@@ -149,29 +215,44 @@ class Session:
 
     def node_path(self, package: str, file: str) -> Path:
         """Where the page's node file `file` of the ported `package` is."""
-        return self.folder / package / file
+        return self.packages[package] / file
 
-    def command(self, command: Command, last: bool = True) -> None:
+    def command(self, command: Command, t: Terminal, first: bool = True,
+                last: bool = True) -> None:
         words = command.words
         if not words:
             return
+        if t.busy is not None:
+            if not first:
+                raise Ros2BlockError(command.location, f"terminal {t.number} is busy with "
+                                                       f"`{t.busy.command.text}`: put this "
+                                                       "command in a block of its own, typed "
+                                                       "into another terminal (data-terminal)")
+            from sw2sim.ros.run import descendants, stop
+            self.stopped += [t.busy.process.pid, *descendants(t.busy.process.pid)]
+            stop(t.busy.process)             # the reader's Ctrl-C, to type here
+            t.busy = None
         if words[:2] == ["sw2sim", "ros2"]:
             text = command.text
             if "--realtime" not in words:
                 text += f" --realtime {self.realtime:g}"
-            self.wait_until_up(self.start(command, text))
+            t.busy = self.start(command, text, t)
+            self.wait_until_up(t.busy)
         elif words[0] in ("python", "python3") and len(words) > 1 and words[1].endswith(".py"):
-            self.ensure_node(command, words[1])
+            self.ensure_node(command, t, words[1])
             if last:
-                self.start(command, command.text)
+                t.busy = self.start(command, command.text, t)
             else:   # the next command of the block is typed once this one has ended
-                output = self.finish(command)
+                output = self.finish(command, t)
                 if m := FAULTS.search(output):
                     raise Ros2BlockError(command.location, f"`{command.text}` printed a fault:"
                                                            f"\n{output[max(0, m.start() - 600):]}"
                                                            [:2500])
         else:
-            self.finish(command)
+            self.finish(command, t)
+            if words[:2] == ["sw2sim", "port"] and "-o" in words[:-1]:
+                out = expand(words[words.index("-o") + 1], t.env, t.cwd)
+                self.packages[out.name] = out
         self.ran.append(f"{command.location}: {command.text}")
 
     def wait_until_up(self, standin: Running) -> None:
@@ -185,43 +266,56 @@ class Session:
                                                                f"not come up:\n{_tail(standin.log)}")
             time.sleep(0.05)
 
-    def ensure_node(self, command: Command, file: str) -> None:
-        """The node file a command starts: written by this page, else taken from the page
-        that shows it."""
-        path = (self.cwd / file).resolve()
+    def ensure_node(self, command: Command, t: Terminal, file: str) -> None:
+        """The node file a command starts: written by this page (or an earlier one in the
+        same clone), else taken from the page that shows it."""
+        path = expand(file, t.env, t.cwd)
         if path.is_file():
             return
-        relative = os.path.relpath(path, self.folder)
-        block = node_blocks(self.root).get(relative)
-        if block is None:
-            raise Ros2BlockError(command.location, f"`{command.text}`: no page shows "
-                                                   f"{relative} (a python block with "
-                                                   f"data-ros2 and data-file)")
-        self.write_node(block)
+        for key, block in node_blocks(self.root).items():
+            package, rel = key.split("/", 1)
+            if package in self.packages and self.packages[package] / rel == path:
+                self.write_node(block)
+                return
+        raise Ros2BlockError(command.location, f"`{command.text}`: no page shows {path} (a "
+                                               "python block with data-ros2 and data-file, in "
+                                               "a package the page ports)")
 
-    def start(self, command: Command, text: str) -> Running:
+    def start(self, command: Command, text: str, t: Terminal) -> Running:
         log = self.logs / f"{len(self.ran):02d}-{_slug(command)}.log"
-        started = Running(command, shell.start(text, self.cwd, self.env, log), log)
+        started = Running(command, shell.start(text, t.cwd, t.env, log), log, t.number)
         self.started.append(started)
         return started
 
-    def finish(self, command: Command) -> str:
-        """Run a command to its end, and keep what it changed of the shell; what it
-        printed."""
+    def finish(self, command: Command, t: Terminal) -> str:
+        """Run a command to its end in terminal `t`, and keep what it changed of the
+        terminal's shell; what it printed."""
         try:
-            ended = shell.finish(command.text, self.cwd, self.env, self.folder / "shell",
+            ended = shell.finish(command.text, t.cwd, t.env, self.folder / "shell",
                                  COMMAND_TIMEOUT)
         except subprocess.TimeoutExpired:
             raise Ros2BlockError(command.location, f"`{command.text}` did not end within "
                                                    f"{COMMAND_TIMEOUT:g} s") from None
         if ended.done.returncode != 0:
             raise Ros2BlockError(command.location,
-                                 f"`{command.text}` exited with {ended.done.returncode}:\n"
+                                 f"`{command.text}` exited with {ended.done.returncode} in "
+                                 f"terminal {t.number}:\n"
                                  f"{(ended.done.stdout + ended.done.stderr)[-1500:]}")
         # what the command exported holds, but ROS 2 stays on 127.0.0.1 in the session's
         # domain (the pages' `export ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST` included)
-        self.cwd, self.env = ended.cwd, environment(self.domain, ended.env)
+        t.cwd, t.env = ended.cwd, environment(self.domain, ended.env)
         return ended.done.stdout + ended.done.stderr
+
+    def created_in_clone(self) -> list[str]:
+        """What following the pages made inside the clone: every path there but the
+        example packages' copies and the .venv-ros2 link, relative to the clone."""
+        found = []
+        for path in sorted(self.clone.rglob("*")):
+            rel = path.relative_to(self.clone)
+            if rel.parts[0] in ("examples", ENVIRONMENT):
+                continue
+            found.append(rel.as_posix() + ("/" if path.is_dir() else ""))
+        return found
 
     # -- the end -----------------------------------------------------------------------
     def check(self) -> None:
@@ -265,10 +359,12 @@ class Session:
 
 
 def ported_source(command: Command) -> str | None:
-    """`examples/example_1` of `sw2sim port examples/example_1 -o ...`, else None."""
+    """`examples/example_1` of `sw2sim port "$SW2SIM_COURSE/examples/example_1" -o ...`
+    (or of `examples/example_1`), else None."""
     words = command.words
-    if words[:2] == ["sw2sim", "port"] and len(words) > 2 and words[2].startswith("examples/"):
-        return words[2].rstrip("/")
+    if words[:2] == ["sw2sim", "port"] and len(words) > 2:
+        if m := re.search(r"(?:^|/)(examples/[^/]+)/?$", words[2]):
+            return m[1]
     return None
 
 

@@ -21,7 +21,8 @@ PAGES = [parse_page(p, ROOT) for p in find_pages(ROOT)]
 
 @pytest.fixture(scope="module")
 def ported(tmp_path_factory) -> dict[str, Path]:
-    """Every package a page ports (`sw2sim port examples/NAME -o NAME`), ported once."""
+    """Every package a page ports (`sw2sim port .../examples/NAME -o .../NAME`), ported
+    once."""
     out = tmp_path_factory.mktemp("ported")
     found = {}
     for page in PAGES:
@@ -30,7 +31,8 @@ def ported(tmp_path_factory) -> dict[str, Path]:
                 source = ported_source(command)
                 if source:
                     words = command.words
-                    name = words[words.index("-o") + 1] if "-o" in words else Path(source).name
+                    name = Path(words[words.index("-o") + 1] if "-o" in words
+                                else source).name
                     if name not in found:
                         found[name] = port(ROOT / source, out / name).package_dir
     return found

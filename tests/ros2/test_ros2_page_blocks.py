@@ -110,13 +110,15 @@ def _arm_follows_setpoints(record: dict) -> None:
     arrive = _page_number(page, r"From ([\d.]+) s after the set point to the next one")
     # The timer counts from the clock's 0, not from the node's start: every set point but
     # the first (which comes at once from a node started past the first period) falls on
-    # the period's grid, within the node's 10 ms tick of /clock.
+    # the period's grid. The recorder stamps a message with its own clock when it takes
+    # it in, which a loaded run was seen to put 28 ms late; a timer counted from the node's
+    # start would be off the grid by wherever in the period the node started.
     period = _page_number(page, r"fires every ([\d.]+) s of the simulation's clock")
     assert "counted from the clock's 0 and not from the node's start" in _page_text(page)
     for topic in ("/middle_arm_controller/joint_trajectory", "/end_arm_controller/joint_trajectory"):
         times = [ts for ts, _ in record["topics"][topic]]
         assert len(times) >= 2, (topic, times)
-        off = [ts for ts in times[1:] if abs(ts - period * round(ts / period)) > 0.02]
+        off = [ts for ts in times[1:] if abs(ts - period * round(ts / period)) > 0.2]
         assert not off, (topic, times)
     checked = 0
     for topic, joint in (("/middle_arm_controller/joint_trajectory", "middle_arm_joint"),
@@ -216,6 +218,40 @@ def _wait_for_line(process: subprocess.Popen, line: str, timeout: float = 30.0) 
     raise Ros2BlockError("the recorder", f"no joint states within {timeout:g} s")
 
 
+# A page followed in the clone and home folder that an earlier page left, as its reader does:
+# Practice 2's ROS 2 page ports example_1 again, where Practice 1's page saved its node.
+FOLLOWS = {"_pages/practice-2/05-ros2.md": "_pages/practice-1/06-ros2.md"}
+CLONES: dict[str, tuple[Path, Path]] = {}   # page -> (clone, home) its run left
+
+
+def _clone_after(earlier: str, folder: Path) -> tuple[Path, Path]:
+    """The clone and home folder after `earlier`'s page was followed: its run in this test
+    session if it passed, else that page's blocks followed here first."""
+    if earlier in CLONES:
+        return CLONES[earlier]
+    domain = ros2_domains.claim()
+    try:
+        with Session(parse_page(ROOT / earlier, ROOT), ROOT, folder, domain.id,
+                     realtime=CLAIMS[earlier][0]) as session:
+            session.run()
+            session.check()
+        return session.clone, session.home
+    finally:
+        domain.release()
+
+
+def _outside_git(session: Session) -> list[str]:
+    """What the page made inside the reader's clone that git would show as new: every such
+    path must be one the repository's .gitignore covers."""
+    created = session.created_in_clone()
+    if not created:
+        return []
+    done = subprocess.run(["git", "-C", str(ROOT), "check-ignore", "--no-index", "--stdin"],
+                          input="\n".join(created), capture_output=True, text=True, timeout=30)
+    ignored = set(done.stdout.splitlines())
+    return [path for path in created if path not in ignored]
+
+
 def _ctrl_c_stops(page, session: Session) -> None:
     """The page's own node that runs until Ctrl-C, started again and stopped with Ctrl-C
     while the simulation runs: it ends with status 0 and no traceback, also when the Ctrl-C
@@ -226,7 +262,7 @@ def _ctrl_c_stops(page, session: Session) -> None:
         command = [str(PYTHON), str(session.node_path(package, file)), "--ros-args", "-p",
                    "use_sim_time:=true"]
         for in_take in CTRL_C_IN_TAKE:
-            fault = ctrl_c.stop_once(command, session.env, session.cwd, in_take=in_take)
+            fault = ctrl_c.stop_once(command, session.env, session.home, in_take=in_take)
             if fault:
                 raise Ros2BlockError(page.path, f"{package}/{file} on Ctrl-C: {fault}")
 
@@ -241,7 +277,11 @@ def test_page_ros2_blocks(path, tmp_path, record_property, request):
     fault, recorder = None, None
     domain = ros2_domains.claim()   # no other test's traffic in it
     request.addfinalizer(domain.release)
-    with Session(page, ROOT, tmp_path / "session", domain.id, realtime=realtime) as session:
+    clone = home = None
+    if page.path in FOLLOWS:
+        clone, home = _clone_after(FOLLOWS[page.path], tmp_path / "earlier")
+    with Session(page, ROOT, tmp_path / "session", domain.id, realtime=realtime, clone=clone,
+                 home=home) as session:
         try:
             session.prepare()
             recorder = subprocess.Popen(
@@ -265,6 +305,8 @@ def test_page_ros2_blocks(path, tmp_path, record_property, request):
                         for p in check(c, record["graph"], tables)]
             assert not problems, "\n".join(problems)
             _ctrl_c_stops(page, session)
+            new = _outside_git(session)
+            assert not new, f"following the page left files in the clone that git shows: {new}"
         except Ros2BlockError as error:
             fault = str(error)
         finally:
@@ -280,3 +322,4 @@ def test_page_ros2_blocks(path, tmp_path, record_property, request):
             fault = str(error)
     if fault:
         pytest.fail(fault, pytrace=False)
+    CLONES[page.path] = (session.clone, session.home)
