@@ -36,10 +36,14 @@ ACTUATORS = ("general", "position", "velocity", "motor")
 # same motion either way. So where one actuator drives a joint, its cap moves there.
 
 
+# The name the XML of MuJoCo's to_xml is parsed under: text MuJoCo wrote, no file of the user's.
+WRITTEN = "mujoco-to_xml"
+
+
 def browser_form(xml: str) -> str:
     """`xml` (a model written by MuJoCo PYTHON_MUJOCO) in the form BROWSER_MUJOCO reads and
     steps as PYTHON_MUJOCO steps the original."""
-    root = parse_bytes(xml.encode("utf-8"))
+    root = parse_bytes(xml.encode("utf-8"), url=WRITTEN)
     changed = False
     actuators = [element for element in root.iter(*ACTUATORS)]
     for element in actuators:
