@@ -255,7 +255,8 @@ def _outside_git(session: Session) -> list[str]:
 def _ctrl_c_stops(page, session: Session) -> None:
     """The page's own node that runs until Ctrl-C, started again and stopped with Ctrl-C
     while the simulation runs: it ends with status 0 and no traceback, also when the Ctrl-C
-    comes while rclpy takes a message in."""
+    comes while rclpy takes a message in. A one-shot node of the page, stopped while it
+    waits for its controller, ends without a traceback too."""
     for package, file in ctrl_c.NODES:
         if not any(b.ros2 == package and b.data_file == file for b in page.blocks):
             continue
@@ -265,6 +266,18 @@ def _ctrl_c_stops(page, session: Session) -> None:
             fault = ctrl_c.stop_once(command, session.env, session.home, in_take=in_take)
             if fault:
                 raise Ros2BlockError(page.path, f"{package}/{file} on Ctrl-C: {fault}")
+    for package, file, args in ctrl_c.ONE_SHOTS:
+        if not any(b.ros2 == package and b.data_file == file for b in page.blocks):
+            continue
+        nobody = ros2_domains.claim()   # no controller answers there: the node waits
+        try:
+            fault = ctrl_c.stop_once([str(PYTHON), str(session.node_path(package, file)), *args],
+                                     {**session.env, "ROS_DOMAIN_ID": str(nobody.id)},
+                                     session.home, statuses=(0, 1))
+        finally:
+            nobody.release()
+        if fault:
+            raise Ros2BlockError(page.path, f"{package}/{file} on Ctrl-C while it waits: {fault}")
 
 
 @pytest.mark.parametrize("path", PAGES, ids=lambda p: p.relative_to(ROOT).as_posix())
