@@ -20,7 +20,7 @@ from pathlib import Path
 
 from lxml import etree
 
-from . import xmlsafe
+from . import package_name, xmlsafe
 from .errors import LoadError
 from .locate import no_urdf, package_path, urdf_candidates, urdf_stem
 
@@ -42,6 +42,7 @@ class Package:
     chosen_because: str = ""                 # why this URDF, when the package holds several
     other_urdfs: tuple[Path, ...] = ()       # the URDFs (and xacros) not chosen
     expanded_from: Path | None = None        # the .xacro the URDF was expanded from
+    name_from: str = "package.xml"           # where `name` was read (sw2sim.package_name)
 
     @property
     def manifest_file(self) -> Path:
@@ -106,12 +107,14 @@ def find_package(path: str | os.PathLike, urdf: str | None = None) -> Package:
     if manifest_file.is_symlink() and root.resolve() not in manifest_file.resolve().parents:
         raise LoadError(manifest_file, "package.xml is a link to a file outside the package; "
                         "copy the file into the package instead", kind="unsafe")
-    manifest = None
+    manifest, name_from = None, package_name.FOLDER
     if manifest_file.is_file():
         manifest = _read_manifest(manifest_file)
         found = manifest.findtext("name") if manifest is not None else None
         if found:
-            name = found.strip()
+            name, name_from = found.strip(), "package.xml"
+    else:   # a raw export copied elsewhere: what the exporter's log or CSV says, if anything
+        name, name_from = package_name.from_files(root, None, None)
     because, others = "", ()
     if path.is_dir():
         candidates = urdf_candidates(path)
@@ -129,9 +132,13 @@ def find_package(path: str | os.PathLike, urdf: str | None = None) -> Package:
         robot, expanded = _read_xacro(chosen, root.resolve(), name), chosen
     else:
         robot = _read_urdf(chosen)
+    if manifest is None and not manifest_file.is_file():
+        named, where = package_name.from_files(root, robot, chosen)
+        if where == package_name.MESHES:   # the name its mesh paths resolve with wins
+            name, name_from = named, where
     return Package(root=root.resolve(), name=name, urdf=chosen, robot=robot,
                    manifest=manifest, source=given, chosen_because=because,
-                   other_urdfs=others, expanded_from=expanded)
+                   other_urdfs=others, expanded_from=expanded, name_from=name_from)
 
 
 def _is_xacro(path: Path) -> bool:

@@ -103,8 +103,14 @@ def check(ctx) -> None:
     if package.manifest is not None:
         _manifest(ctx, manifest, package.manifest)
     else:
+        from ..port.naming import is_legal, legal_name
+        ported = package.name if is_legal(package.name) else legal_name(package.name)
         ctx.add("package-xml-missing", f"no package.xml in {package.root.name}/; the package "
-                f'name is taken from the folder, "{package.name}"', file=manifest)
+                f'name "{package.name}" is taken from {package.name_from}', file=manifest,
+                fix=f"`sw2sim port` writes one in its place: a ROS 2 package.xml (format 3, "
+                    f'ament_cmake) naming the package "{ported}", with every mesh path '
+                    f'renamed to package://{ported}/ (--name NEW chooses another name); for '
+                    "ROS 1, copy the package.xml the exporter wrote beside urdf/ and meshes/")
     _mesh_package_names(ctx, has_manifest=package.manifest is not None)
 
 
@@ -163,7 +169,8 @@ def _mesh_package_names(ctx, has_manifest: bool) -> None:
             if name != expected:
                 wrong.setdefault(name, []).append(mesh)
     for name, meshes in wrong.items():
-        source = "package.xml" if has_manifest else "the folder's name (there is no package.xml)"
+        source = "package.xml" if has_manifest else \
+            f"{ctx.package.name_from} (there is no package.xml)"
         count = f"{len(meshes)} mesh path" + ("s" if len(meshes) > 1 else "")
         fix = (f'change <name> in package.xml to "{name}", or replace "package://{name}/" by '
                f'"package://{expected}/" in the URDF' if has_manifest else

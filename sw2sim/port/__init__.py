@@ -107,6 +107,10 @@ def port(source: str | os.PathLike | Package, out: str | os.PathLike, *,
     shown_source = shown(package.root) or str(package.source or package.root)
     choices: list[str] = []
     new_name = _name(package, name, choices)
+    if package.manifest is None:
+        choices.append(f"The source has no package.xml: its name `{package.name}` was read from "
+                       f"{package.name_from}, and package.xml and CMakeLists.txt were written "
+                       f"for `{new_name}`.")
     _check_out(out, package.root)
 
     tree = urdf.read_tree(package)

@@ -269,7 +269,8 @@ def _rename_meshes(robot, package: Package, new_name: str, urdf: str,
     """Point every mesh at package://<new_name>/<path in the package>; return what to copy."""
     files = None
     copies: dict[str, Path] = {}
-    renamed = 0
+    renamed: dict[str, int] = {}            # the package a renamed path named -> how many
+    elsewhere: dict[str, list[str]] = {}    # another package -> where its meshes are named
     for mesh in robot.iter("mesh"):
         filename = (mesh.get("filename") or "").strip()
         if not filename:
@@ -278,9 +279,7 @@ def _rename_meshes(robot, package: Package, new_name: str, urdf: str,
         if filename.startswith("package://"):
             named = filename[len("package://"):].partition("/")[0]
             if named not in (package.name, package.root.name):
-                choices.append(f"{where}: the mesh {filename} is in another package "
-                               f"({named}); it was left as it is, so that package must be "
-                               "installed too.")
+                elsewhere.setdefault(named, []).append(where)
                 continue
         if files is None:
             files = mesh_paths.package_files(package.root)
@@ -305,7 +304,17 @@ def _rename_meshes(robot, package: Package, new_name: str, urdf: str,
         new = f"package://{new_name}/{rel}"
         if new != filename:
             mesh.set("filename", new)
-            renamed += 1
+            old = filename[len("package://"):].partition("/")[0] \
+                if filename.startswith("package://") else ""
+            renamed[old] = renamed.get(old, 0) + 1
     if renamed:
-        choices.append(f"{renamed} mesh path(s) now start with package://{new_name}/.")
+        before = [f"package://{old}/" if old else "a path without package://"
+                  for old in renamed if old != new_name]
+        choices.append(f"{sum(renamed.values())} mesh path(s) now start with "
+                       f"package://{new_name}/" +
+                       (f" (they named {' and '.join(before)})" if before else "") + ".")
+    for named, places in elsewhere.items():
+        choices.append(f"{len(places)} mesh path(s) name the package {named} (first at "
+                       f"{places[0]}), whose files are not in this one; they were left as "
+                       "they are, so that package must be installed too.")
     return copies

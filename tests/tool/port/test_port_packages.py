@@ -1,5 +1,6 @@
 """sw2sim port on every lesson package, Arm_Assembly and a raw exporter package (the exporter's
-own 3-DOF arm, whose port gets the controllers of sw2sim.port.defaults): the ports
+own 3-DOF arm, whose port gets the controllers of sw2sim.port.defaults), and the exporter's
+four-wheeler copied without package.xml into a folder of another name: the ports
 build with colcon (ament_cmake from PyPI), their URDFs load in MuJoCo and yourdfpy with
 every mesh, and their launch files name only what Jazzy and the installed tree have.
 
@@ -26,7 +27,8 @@ from repository import ROOT
 from sw2sim.port import port
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "check"))
-from exporter_packages import THREE_DOF_ARM, write_export  # noqa: E402  (tests/tool/check)
+from exporter_packages import FOUR_WHEELER_NESTED, THREE_DOF_ARM, write_export  # noqa: E402
+from test_port_raw_export import raw_copy  # noqa: E402
 
 # colcon and ament_cmake from PyPI live in the ROS 2 environment (tests/ros2_environment.py)
 VENV = ros2_environment.VENV
@@ -38,7 +40,9 @@ SOURCES = {"example_1": ("example_1", {"effort_joints": [WHEELS]}),
            "example_2": ("example_2", {}), "example_3": ("example_3", {}),
            "example_4": ("example_4", {}), "example_5": ("example_5", {}),
            "Arm_Assembly": ("arm_assembly", {}),
-           THREE_DOF_ARM.name: ("r3_dof_arm_description", {})}
+           THREE_DOF_ARM.name: ("r3_dof_arm_description", {}),
+           # no package.xml, in my_repo/wheeler/: the name its mesh paths say, made legal
+           "wheeler": ("r4_wheeler_nested_description", {})}
 
 
 @pytest.fixture(scope="module")
@@ -46,9 +50,10 @@ def workspace(tmp_path_factory):
     """A colcon workspace whose src/ holds the port of every source."""
     top = tmp_path_factory.mktemp("port_ws")
     raw = write_export(THREE_DOF_ARM, top / "raw")
+    raws = {THREE_DOF_ARM.name: raw, "wheeler": raw_copy(FOUR_WHEELER_NESTED, top, "wheeler")}
     reports = {}
     for source, (name, options) in SOURCES.items():
-        folder = raw if source == THREE_DOF_ARM.name else ROOT / "examples" / source
+        folder = raws.get(source, ROOT / "examples" / source)
         reports[name] = port(folder, top / "src" / name, **options)
     return top, reports
 
@@ -100,6 +105,10 @@ def test_colcon_build_installs_every_port(workspace, installed):
                 / name).is_file()
         meshes = sorted(p.name for p in (share / "meshes").iterdir())
         assert meshes == sorted(p.name for p in (reports[name].package_dir / "meshes").iterdir())
+        # every mesh path of the installed URDF resolves in the installed package
+        for filename in _mesh_elements(share / "urdf" / f"{name}.urdf"):
+            assert filename.startswith(f"package://{name}/"), (name, filename)
+            assert (share / filename.split("/", 3)[3]).is_file(), (name, filename)
     # `source install/setup.bash`, as the pages have the reader type, finds every package
     # (colcon-bash writes the file; colcon-core alone writes only setup.sh)
     shown = subprocess.run(["bash", "-c", "source install/setup.bash && echo $AMENT_PREFIX_PATH"],
