@@ -64,9 +64,10 @@ from pathlib import Path
 
 from . import shell
 from .parse import Block, Page
+from .terminal import (DEBIAN_PACKAGES, LOGIN_PATH, SETUP_PAGE, WINDOWS,  # noqa: F401
+                       Command, RosBlockError, Running, Terminal, commands, package_of,
+                       terminal_setup)
 
-WINDOWS = frozenset({"rqt_plot", "rviz", "rqt", "rqt_graph", "rqt_console", "rqt_gui",
-                     "rqt_publisher", "rqt_ez_publisher", "joint_state_publisher_gui"})
 COMMAND_TIMEOUT = 30.0   # s for a command that ends, or for what it names to exist
 SETTLE_TIMEOUT = 30.0    # s for a launch to come up
 QUIET = 0.5              # s without a new node: the launch is up
@@ -79,111 +80,6 @@ LAUNCH_FAULTS = re.compile(r"Traceback \(most recent call last\)|process has die
                            r"|^ERROR:", re.MULTILINE)
 # roslaunch's colours and terminal titles, around its lines ("\x1b[31mERROR: ...")
 TERMINAL_CODES = re.compile(r"\x1b\[[0-9;]*[A-Za-z]|\x1b\][^\x07]*\x07")
-
-
-class RosBlockError(Exception):
-    """A ROS block that did not do what the page says, at its page line."""
-
-    def __init__(self, location: str, message: str):
-        super().__init__(f"{location}: {message}")
-        self.location = location
-
-
-@dataclass
-class Command:
-    """One command of a ```bash block."""
-
-    text: str
-    location: str   # page.md:line of its first line
-    package: str    # the block's data-ros: the package, or a folder beside it
-
-    @property
-    def words(self) -> list[str]:
-        try:
-            return shlex.split(self.text, comments=True)
-        except ValueError:
-            return self.text.split()
-
-    @property
-    def program(self) -> str:
-        words = self.words
-        if words[:1] == ["rosrun"] and len(words) >= 3:
-            return words[2]
-        return words[0] if words else ""
-
-    @property
-    def keeps_running(self) -> bool:
-        w = self.words
-        if w[:1] in (["roslaunch"], ["rosrun"], ["roscore"]):
-            return True
-        if w[:2] in (["rostopic", "echo"], ["rostopic", "hz"]):
-            return True
-        if self.plots:
-            return "--duration" not in w
-        return w[:2] == ["rostopic", "pub"] and not {"-1", "--once"} & set(w)
-
-    @property
-    def plots(self) -> bool:
-        """`sw2sim plot`, which the pages give beside rqt_plot."""
-        return self.words[:2] == ["sw2sim", "plot"]
-
-
-    @property
-    def publishes_once(self) -> bool:
-        """`rostopic pub -1`: it publishes at once, then keeps the message latched for
-        3 s before it returns."""
-        w = self.words
-        return w[:2] == ["rostopic", "pub"] and bool({"-1", "--once"} & set(w))
-
-
-def commands(block: Block) -> list[Command]:
-    """The commands of a bash block, with the page line each starts on."""
-    found, text, first = [], "", None
-    for n, line in enumerate(block.code.split("\n"), start=block.line):
-        if first is None:
-            if not line.strip() or line.lstrip().startswith("#"):
-                continue
-            first = n
-        text += (line[:-1].strip() + " ") if line.endswith("\\") else line.strip()
-        if not line.endswith("\\"):
-            found.append(Command(text.strip(), f"{block.page}:{first}", block.ros))
-            text, first = "", None
-    return found
-
-
-@dataclass
-class Running:
-    command: Command
-    process: subprocess.Popen
-    log: Path
-    terminal: int = 1
-
-
-@dataclass
-class Terminal:
-    """One of the reader's terminals: where its shell is, its variables, and the command
-    that keeps it busy (None when the reader can type)."""
-
-    number: int
-    cwd: Path
-    env: dict[str, str]
-    busy: Running | None = None
-
-
-# What a login shell has before the reader types anything (Debian's default PATH).
-LOGIN_PATH = "/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin"
-SETUP_PAGE = "_pages/reference/01-getting-started.md"
-DEBIAN_PACKAGES = "/usr/share"   # where Debian's ROS packages are (rviz, robot_state_publisher)
-
-
-def terminal_setup(root: Path) -> Block:
-    """Getting started's block of what every new terminal runs (`data-ros-setup`)."""
-    from .parse import parse_page
-    block = parse_page(root / SETUP_PAGE, root).ros_setup
-    if block is None:
-        raise RosBlockError(SETUP_PAGE, "no ```bash block marked data-ros-setup: the ROS pages' "
-                                        "terminals have nothing to start from")
-    return block
 
 
 @dataclass
@@ -552,11 +448,6 @@ class Session:
         """The processes it started (and those below them) that still run after close()."""
         from sw2sim.ros.run import running
         return running(self.stopped)
-
-
-def package_of(ros: str) -> str:
-    """The package a `data-ros` value names: its first folder."""
-    return ros.split("/", 1)[0]
 
 
 def _first_name(words: list[str]) -> str:
