@@ -6,7 +6,7 @@
 
 const WINDOW = 10; // s shown
 const COLORS = ["#d62728", "#1f77b4", "#ff7f0e", "#2ca02c", "#9467bd", "#8c564b"];
-const MARGIN = { left: 52, right: 8, top: 8, bottom: 26 };
+const MARGIN = { left: 52, right: 20, top: 8, bottom: 26 };   // right: room for the last time label
 
 export class TracePlot {
   // series: [{label, column, step}], `column` in the worker's trace rows (0 is time).
