@@ -36,7 +36,7 @@ from pathlib import Path
 from .. import mesh_paths
 from ..archive import shown
 from ..package import Package, as_package
-from . import cmake, controllers, defaults, launch, manifest, naming, rviz, urdf
+from . import cmake, controllers, defaults, launch, manifest, naming, ros2_form, rviz, urdf
 from .readme import readme
 
 MARKER = ".sw2sim-port"   # names the files an earlier port wrote, so it may be replaced
@@ -83,8 +83,11 @@ class PortReport:
             rel = aside[:aside.rindex(MINE)]
             lines.append(f"{rel}: you had changed it, and the port now writes it differently: "
                          f"yours is kept as {aside}; carry your changes over to the new {rel}")
-        lines.append(f"build it: copy the folder into a workspace's src/, run `colcon build`, "
-                     f"then `ros2 launch {self.name} gazebo.launch.py`")
+        workspace = Path(os.path.abspath(self.package_dir)).parent
+        where = (f"run `colcon build` in {workspace.parent}" if workspace.name == "src" else
+                 "copy the folder into a workspace's src/, run `colcon build`")
+        lines.append(f"build it: {where}, then `source install/setup.bash` and "
+                     f"`ros2 launch {self.name} gazebo.launch.py`")
         return "\n".join(lines)
 
 
@@ -123,27 +126,22 @@ def port(source: str | os.PathLike | Package, out: str | os.PathLike, *,
                        "URDFs were left out.")
     joints = urdf.movable_joints(robot)
     effort = _effort_joints(effort_joints, joints)
-    transmissions = urdf.read_transmissions(robot, urdf_rel)
-    period = urdf.control_period(robot)
-    ros1, read = controllers.find_ros1_controllers(package.root)
-    try:
-        planned = controllers.plan(ros1, joints, effort_joints=effort,
-                                   update_rate=max(1, round(1 / period)) if period else None,
-                                   state_rate=urdf.joint_state_rate(robot))
-    except controllers.Conflict as exc:
-        raise PortError(f"{exc}. Leave the joint out of --effort-joints, or remove one of the "
-                        "controllers from the ROS 1 YAML.") from None
-    planned.sources = read
-    added = defaults.Defaults()
-    ros1_commanded = {j for c in planned.controllers for j in c.commands} - set(effort)
-    if default_controllers and defaults.applies(robot, ros1_commanded):
-        added = defaults.plan(robot, joints, set(effort), urdf_rel)
-        planned.controllers += added.controllers
-        planned.choices += added.choices
-    commands = _commands(transmissions, planned, joints, effort, choices,
-                         {c.name for c in added.controllers})
-    rewritten = urdf.rewrite(tree, package, new_name, commands, list(joints))
-    choices += transmissions.choices + planned.choices + rewritten.choices
+    form = ros2_form.recognise(package, robot)
+    if form is not None:
+        if effort:
+            raise PortError("--effort-joints gives ROS 1 joints without a transmission a "
+                            f"command; {urdf_rel} is already ROS 2 ({', '.join(form.signs)}): "
+                            "give the joints their command interface in its <ros2_control> "
+                            "block instead")
+        planned = controllers.Plan(controllers=[controllers.Controller(n, t) for n, t in
+                                                form.controllers.items()])
+        added = defaults.Defaults()
+        rewritten, fixes = urdf.keep_ros2(tree, package, new_name, ros2_form.fix_urdf)
+        choices.insert(0, ros2_form.summary(form, fixes))
+        choices += rewritten.choices
+    else:
+        planned, added, rewritten = _ros1(package, tree, new_name, urdf_rel, joints, effort,
+                                          default_controllers, choices)
 
     files: dict[str, str | Path] = {}
     for rel in _mesh_files(package.root):
@@ -156,8 +154,10 @@ def port(source: str | os.PathLike | Package, out: str | os.PathLike, *,
                        "it is; Gazebo, RViz and MuJoCo show nothing for it. Export the part "
                        "again (`sw2sim check` on the source says how).")
     files[f"urdf/{new_name}.urdf"] = rewritten.text
-    files["config/controllers.yaml"] = controllers.yaml_text(
-        planned, new_name, [c.name for c in added.controllers])
+    files["config/controllers.yaml"] = (
+        ros2_form.yaml_text(form, package.root, new_name)
+        if form is not None and form.yaml_file is not None else
+        controllers.yaml_text(planned, new_name, [c.name for c in added.controllers]))
     rviz_file = rviz.find(package.root)
     if rviz_file is not None:
         text = rviz_file.read_text(encoding="utf-8", errors="replace")
@@ -188,6 +188,35 @@ def port(source: str | os.PathLike | Package, out: str | os.PathLike, *,
                       files=[f for f in listed if f in files], controllers=planned.names,
                       source=shown_source, replaced=replaced, kept=keep.own,
                       kept_changed=keep.changed, set_aside=keep.aside)
+
+
+def _ros1(package: Package, tree, new_name: str, urdf_rel: str, joints, effort,
+          default_controllers: bool, choices: list[str]):
+    """The controllers and URDF of a ROS 1 (or raw exporter) package: (plan, the default
+    controllers added, the rewritten URDF); what was chosen is appended to `choices`."""
+    robot = tree.getroot()
+    transmissions = urdf.read_transmissions(robot, urdf_rel)
+    period = urdf.control_period(robot)
+    ros1, read = controllers.find_ros1_controllers(package.root)
+    try:
+        planned = controllers.plan(ros1, joints, effort_joints=effort,
+                                   update_rate=max(1, round(1 / period)) if period else None,
+                                   state_rate=urdf.joint_state_rate(robot))
+    except controllers.Conflict as exc:
+        raise PortError(f"{exc}. Leave the joint out of --effort-joints, or remove one of the "
+                        "controllers from the ROS 1 YAML.") from None
+    planned.sources = read
+    added = defaults.Defaults()
+    ros1_commanded = {j for c in planned.controllers for j in c.commands} - set(effort)
+    if default_controllers and defaults.applies(robot, ros1_commanded):
+        added = defaults.plan(robot, joints, set(effort), urdf_rel)
+        planned.controllers += added.controllers
+        planned.choices += added.choices
+    commands = _commands(transmissions, planned, joints, effort, choices,
+                         {c.name for c in added.controllers})
+    rewritten = urdf.rewrite(tree, package, new_name, commands, list(joints))
+    choices += transmissions.choices + planned.choices + rewritten.choices
+    return planned, added, rewritten
 
 
 def _name(package: Package, wanted: str | None, choices: list[str]) -> str:
