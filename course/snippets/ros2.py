@@ -119,6 +119,7 @@ class Session:
     stopped: list[int] = field(default_factory=list)
     terminals: dict[int, Terminal] = field(default_factory=dict)
     packages: dict[str, Path] = field(default_factory=dict)   # name -> folder ported to
+    printed: dict[str, str] = field(default_factory=dict)     # command -> what it printed
     # Called once `sw2sim ros2` has started, before the next command: it returns when the
     # simulation is up, as a reader looks before starting a node in a second terminal.
     # Without it the runner waits for the stand-in's line naming its controllers.
@@ -249,7 +250,7 @@ class Session:
                                                            f"\n{output[max(0, m.start() - 600):]}"
                                                            [:2500])
         else:
-            self.finish(command, t)
+            self.printed[command.text] = self.finish(command, t)
             if words[:2] == ["sw2sim", "port"] and "-o" in words[:-1]:
                 out = expand(words[words.index("-o") + 1], t.env, t.cwd)
                 self.packages[out.name] = out

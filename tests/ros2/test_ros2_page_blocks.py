@@ -240,6 +240,16 @@ def _clone_after(earlier: str, folder: Path) -> tuple[Path, Path]:
         domain.release()
 
 
+def _says_what_the_port_kept(page, session: Session) -> None:
+    """Porting example_1 again where the earlier page saved its node keeps the node, and
+    prints the line the page quotes."""
+    quoted = re.search(r"its output says `([^`]+)`", _page_text(page.path))
+    assert quoted, f"{page.path} no longer quotes what the port prints when it keeps files"
+    ported = [text for text in session.printed if "examples/example_1" in text]
+    assert ported and quoted[1] in session.printed[ported[0]], session.printed
+    assert session.node_path("example_1", "scripts/wheel_pulse.py").is_file()
+
+
 def _outside_git(session: Session) -> list[str]:
     """What the page made inside the reader's clone that git would show as new: every such
     path must be one the repository's .gitignore covers."""
@@ -318,6 +328,8 @@ def test_page_ros2_blocks(path, tmp_path, record_property, request):
                         for p in check(c, record["graph"], tables)]
             assert not problems, "\n".join(problems)
             _ctrl_c_stops(page, session)
+            if page.path in FOLLOWS:
+                _says_what_the_port_kept(page, session)
             new = _outside_git(session)
             assert not new, f"following the page left files in the clone that git shows: {new}"
         except Ros2BlockError as error:
