@@ -54,7 +54,7 @@ from typing import Callable
 
 from . import shell
 from .parse import Block, Page, find_pages, parse_page
-from .ros import LOGIN_PATH, SETUP_PAGE, Command, Running, Terminal, commands
+from .terminal import LOGIN_PATH, SETUP_PAGE, Command, Running, Terminal, commands
 
 # The Python environment the entry page has the reader make for ROS 2 (`make setup` makes
 # it in a clone): ROS 2's message packages share their module names with ROS 1's, so they
