@@ -24,7 +24,11 @@ keeps your files there (a node in scripts/), and the port's files you changed (k
 they are when the port writes them as before, else as FILE.mine). A name ROS 2 refuses
 (Arm_Assembly, robot.SLDASM, 2wd_car) is made legal (arm_assembly, robot_sldasm,
 r2wd_car); --name chooses another. The ROS 1 scripts/ are not ported: rospy nodes
-need rewriting with rclpy. Exit status: 0 written, 2 the input or OUT cannot be used.
+need rewriting with rclpy. A package already in ROS 2 form (ament, <ros2_control>,
+ROS 2 YAML) keeps its controllers and its <ros2_control> block; the report says what was
+fixed (absolute paths of the source folder, xacro's header), or that nothing was.
+Without package.xml, the name is the one the URDF's package:// paths, export.log or the
+exporter's CSV say. Exit status: 0 written, 2 the input or OUT cannot be used.
 
 examples:
   sw2sim port examples/example_3 -o ~/ros2_ws/src/example_3

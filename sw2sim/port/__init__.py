@@ -12,6 +12,11 @@
     meshes/                  copied as they are
     README.md                how to build and run it, and every choice made (readme.py)
 
+A package already in ROS 2 form (an ament package.xml or a <ros2_control> block) keeps its
+controllers' YAML and its <ros2_control> blocks as they are; only what cannot be installed
+is fixed, and said (ros2_form.py). A package without package.xml is named by its own files
+(sw2sim.package_name).
+
 The source is read as every command reads it (a folder or a .zip; a .xacro-only package is
 expanded) and never written to. Every decision taken for the user is a line of
 `PortReport.choices`, printed by the command and listed in README.md.
@@ -173,7 +178,8 @@ def port(source: str | os.PathLike | Package, out: str | os.PathLike, *,
     files["launch/gazebo.launch.py"] = launch.gazebo_launch(new_name, f"{new_name}.urdf",
                                                             planned.names)
     folders = sorted({rel.split("/")[0] for rel in files})
-    choices += _left_behind(package.root)
+    choices += _left_behind(package.root) if form is None else \
+        ros2_form.left_behind(package.root, form)
     files["package.xml"] = manifest.package_xml(
         new_name, package.manifest, [c.package for c in planned.controllers], choices)
     files["CMakeLists.txt"] = cmake.cmakelists(new_name, folders)

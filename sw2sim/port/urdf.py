@@ -158,6 +158,25 @@ def rewrite(tree: etree._ElementTree, package: Package, new_name: str,
     return Rewrite(_serialize(robot), choices, meshes)
 
 
+def keep_ros2(tree: etree._ElementTree, package: Package, new_name: str,
+              fix) -> tuple[Rewrite, list[str]]:
+    """The URDF of a package already in ROS 2 form: its <ros2_control> blocks and plugins
+    kept, mesh URIs in the new name, what `fix` (sw2sim.port.ros2_form.fix_urdf) finds
+    fixed; gz_ros2_control's plugin added only where it has none. Returns the rewrite and
+    the fixes, in words."""
+    robot = tree.getroot()
+    choices: list[str] = []
+    meshes = _rename_meshes(robot, package, new_name,
+                            package.urdf.relative_to(package.root).as_posix(), choices)
+    fixes = fix(robot, package.root, new_name)
+    if not any("gz_ros2_control" in (p.get("name") or "") + (p.get("filename") or "")
+               for p in robot.iter("plugin")):
+        _append(robot, _gz_plugin(new_name))
+        fixes.append("it had no gz_ros2_control plugin, which starts the controllers in "
+                     "Gazebo Sim: one reading config/controllers.yaml was added")
+    return Rewrite(_serialize(robot), choices, meshes), fixes
+
+
 def _serialize(robot: etree._Element) -> str:
     """The document: declaration, the comments around <robot> each on its own line, <robot>."""
     before, after = [], []
