@@ -44,6 +44,27 @@ def _is_ros1(package) -> bool:
     return ("<buildtool_depend>catkin" in text or package.robot.find("ros2_control") is None)
 
 
+def installed(path: str) -> str:
+    """The folder to read for what `sw2sim ros2` was given, where colcon built the package:
+    a bare package name found under AMENT_PREFIX_PATH (after `source install/setup.bash`)
+    is its share folder; a share folder that `colcon build --symlink-install` filled with
+    links (package.xml among them) is the source folder they lead to, which holds the same
+    files as the package's own. Anything else is returned as given."""
+    given = Path(path)
+    if not given.exists() and path and "/" not in path and os.sep not in path:
+        for prefix in os.environ.get("AMENT_PREFIX_PATH", "").split(os.pathsep):
+            share = Path(prefix) / "share" / path if prefix else None
+            if share is not None and (share / "package.xml").is_file():
+                given = share
+                break
+    manifest = given / "package.xml"
+    if given.is_dir() and manifest.is_symlink() and given.parent.name == "share":
+        source = manifest.resolve().parent
+        if (source / "package.xml").is_file():
+            return str(source)
+    return str(given)
+
+
 def _ported(package, say):
     """A ROS 2 port of a ROS 1 package in a temporary folder: (package, folder)."""
     try:
@@ -68,7 +89,7 @@ def run(path: str, duration: float | None = None, realtime: float = 1.0, view: b
         return 2
     from ..package import LoadError, find_package
     try:
-        package = find_package(path)
+        package = find_package(installed(path))
     except LoadError as exc:
         say(f"sw2sim ros2: {exc}")
         return 2

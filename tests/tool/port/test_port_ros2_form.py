@@ -73,3 +73,38 @@ def test_effort_joints_are_refused_on_a_ros2_package(tmp_path, capsys):
     assert main(["port", str(src), "-o", str(tmp_path / "out"),
                  "--effort-joints", WHEELS[0]]) == 2
     assert "already ROS 2" in capsys.readouterr().err
+
+
+def _install(src, prefix, *, links: bool):
+    """colcon's install of `src` into `prefix` (share/car), copied, or as links to the
+    source as --symlink-install leaves it."""
+    share = prefix / "share" / "car"
+    for path in sorted(src.rglob("*")):
+        if path.is_file():
+            target = share / path.relative_to(src)
+            target.parent.mkdir(parents=True, exist_ok=True)
+            if links:
+                target.symlink_to(path)
+            else:
+                target.write_bytes(path.read_bytes())
+    return share
+
+
+def test_sw2sim_ros2_finds_a_colcon_built_ros2_package(tmp_path, monkeypatch):
+    from sw2sim.package import find_package
+    from sw2sim.ros2 import config
+    from sw2sim.ros2.run import installed
+    src = write_car(tmp_path / "ws" / "src")
+    copied = _install(src, tmp_path / "ws" / "install" / "car", links=False)
+    linked = _install(src, tmp_path / "ws" / "linked" / "car", links=True)
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.setenv("AMENT_PREFIX_PATH", str(tmp_path / "ws" / "install" / "car"))
+    # by name, as after `source install/setup.bash`; a --symlink-install share folder's links
+    # lead out of it (package.xml among them), so its source folder is read
+    assert installed("car") == str(copied)
+    assert installed(str(linked)) == str(src)
+    assert installed(str(copied)) == str(copied)
+    for folder in (installed("car"), installed(str(linked))):
+        setup = config.read(find_package(folder))
+        assert list(setup.joints) == list(WHEELS)
+        assert list(setup.controllers) == ["joint_state_broadcaster", "wheel_controller"]
