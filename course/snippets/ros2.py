@@ -14,23 +14,26 @@ can be followed in one clone and one home folder, one after the other (`clone`, 
 Practice 2's page follows Practice 1's. What the pages create inside the clone is listed by
 `created_in_clone()`.
 
-A ```bash block is split into its commands (course.snippets.ros.commands), each run by
-bash in its terminal:
+A ```bash block is split into its commands (course.snippets.terminal.commands), each run
+by bash in its terminal:
 
 - `sw2sim ros2 PACKAGE` keeps running, as in a terminal of its own; the runner adds
   `--realtime` (simulated seconds per wall second) unless the page gives it;
-- `python PACKAGE/scripts/NODE.py ...` starts a node of the page and goes on: the node
+- `python ~/ros2_ws/src/PACKAGE/scripts/NODE.py ...` starts a node of the page and goes
+  on (it keeps its terminal busy): the node
   keeps running, or ends by itself with status 0 (a one-shot command). Followed by
   another command of its block, it runs to its end first (status 0, no error printed),
   as the terminal it is typed in gives the prompt back only then: a client that sends
   one goal and prints its result, before the next node starts;
 - every other command (`sw2sim port`, `cd`, ...) must end with status 0; what it changes
-  of the shell (`cd`, `export`) holds for the next.
+  of the shell (`cd`, `export`) holds for the next of its terminal. A `sw2sim port ... -o
+  FOLDER` tells the runner where the package is (`~` and `$NAME` read as bash reads them).
 
 A ```python block is a node file of a ported package: `data-ros2` names the package (the
 folder `sw2sim port ... -o FOLDER` wrote, found by its name), `data-file` the file in it.
-The runner writes the block's code there when the page reaches it. A command may start a node that another page shows
-(Practice 2 runs Practice 1's); the runner takes its code from that page.
+The runner writes the block's code there when the page reaches it. A command may start a
+node that another page shows (Practice 2 runs Practice 1's): it is there when that page
+was followed in the same clone, else the runner takes its code from that page.
 
 Every process runs with ROS 2 kept on 127.0.0.1 in the session's own domain id, in a
 process group of its own, and `close()` stops them all, also after a failure. A page's
