@@ -129,6 +129,7 @@ def port(source: str | os.PathLike | Package, out: str | os.PathLike, *,
     elif package.chosen_because:
         choices.append(f"{urdf_rel} was ported ({package.chosen_because}); the package's other "
                        "URDFs were left out.")
+    choices += urdf.drop_broken_mimics(robot, urdf_rel)
     joints = urdf.movable_joints(robot)
     effort = _effort_joints(effort_joints, joints)
     form = ros2_form.recognise(package, robot)

@@ -11,6 +11,7 @@ in the library `gz_ros2_control-system`, which reads the YAML named in <paramete
 from __future__ import annotations
 
 import copy
+import difflib
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -175,6 +176,50 @@ def keep_ros2(tree: etree._ElementTree, package: Package, new_name: str,
         fixes.append("it had no gz_ros2_control plugin, which starts the controllers in "
                      "Gazebo Sim: one reading config/controllers.yaml was added")
     return Rewrite(_serialize(robot), choices, meshes), fixes
+
+
+# ros2_control (Jazzy, 4.x) reads every <mimic> of a joint in a <ros2_control> block and looks
+# the joint it names up among the block's joints, stopping the controller manager with
+# "Mimic joint '...' not found in <ros2_control> tag" when it is not there
+# (hardware_interface/src/component_parser.cpp, parse_control_resources_from_urdf).
+MIMIC_SOURCE = ("https://github.com/ros-controls/ros2_control/blob/4.46.0/hardware_interface/"
+                "src/component_parser.cpp#L1061-L1076")
+
+
+def drop_broken_mimics(robot: etree._Element, urdf: str) -> list[str]:
+    """Remove each <mimic> that names no movable joint of the URDF (a typo, a renamed or
+    fixed joint, the joint itself); say which, and the fix."""
+    movable = movable_joints(robot)
+    said = []
+    for joint in robot.findall("joint"):
+        name = joint.get("name", "")
+        for mimic in joint.findall("mimic"):
+            target = mimic.get("joint") or ""
+            if target in movable and target != name:
+                continue
+            where = f"{urdf}:{mimic.sourceline}" if mimic.sourceline else urdf
+            others = [n for n in movable if n != name]
+            near = difflib.get_close_matches(target, others, n=1, cutoff=0.4)
+            why = ("is the joint itself" if target == name else
+                   f"is a {_type_of(robot, target)} joint" if _type_of(robot, target) else
+                   "is not a joint of the URDF")
+            _remove(mimic)
+            said.append(f"{where}: the <mimic> of joint {name} names {target!r}, which {why}; "
+                        "ros2_control would stop on it (\"Mimic joint ... not found in "
+                        "<ros2_control> tag\"), so it was left out and "
+                        f"{name} moves on its own. Fix: write <mimic joint=\""
+                        f"{near[0] if near else 'NAME'}\"> in the source" +
+                        (" if that is the joint meant" if near else
+                         ", NAME a revolute, continuous or prismatic joint") +
+                        f", and port again ({MIMIC_SOURCE}).")
+    return said
+
+
+def _type_of(robot: etree._Element, name: str) -> str | None:
+    for joint in robot.findall("joint"):
+        if joint.get("name") == name:
+            return joint.get("type")
+    return None
 
 
 def _serialize(robot: etree._Element) -> str:

@@ -206,3 +206,22 @@ def test_mimic_joints_axisless_joints_and_an_effort_of_0_are_named(tmp_path):
     assert any("joint1 (its axis is 0 0 0)" in c and "joint3 (it mimics joint2)" in c
                for c in report.choices)
     assert any(c.startswith("joint2: the <limit> gives effort 0") for c in report.choices)
+
+
+def test_a_mimic_naming_no_joint_is_named_with_its_fix_and_left_out(tmp_path):
+    # A hand-added <mimic> with a typo (as in real exports): ros2_control would stop on it
+    src = write_export(THREE_DOF_ARM, tmp_path / "src", newline="\n")
+    urdf = src / "urdf" / f"{THREE_DOF_ARM.name}.urdf"
+    edit_re(urdf, r'(name="effector_joint"\s+type="continuous">)',
+            r'\1\n    <mimic\n      joint="dist_jiont" />')
+    line = urdf.read_text().splitlines().index('      joint="dist_jiont" />') + 1
+    out = tmp_path / "out"
+    report = port(src, out)
+    (said,) = [c for c in report.choices if "<mimic>" in c]
+    assert said.startswith(f"urdf/{THREE_DOF_ARM.name}.urdf:{line}:")
+    assert "'dist_jiont', which is not a joint of the URDF" in said
+    assert '<mimic joint="dist_joint">' in said and "component_parser.cpp" in said
+    ported = etree.parse(str(out / "urdf" / "r3_dof_arm_description.urdf")).getroot()
+    assert ported.find(".//mimic") is None
+    # the joint moves on its own, so it has a command like the others
+    assert _commands(out)["effector_joint"] == ["position"]
