@@ -239,23 +239,30 @@ def _number(value) -> bool:
     return isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
 
 
-def _position_pid(c, joints, choices) -> Controller | None:
-    """effort_controllers/JointPositionController: a PID on position error, out an effort."""
-    joint = _joint(c, joints, choices)
-    if joint is None:
-        return None
-    choices.append(
-        f"{_where(c)}: `{c.name}` (effort_controllers/JointPositionController) became a "
-        "joint_trajectory_controller/JointTrajectoryController on `effort`, with its PID under "
-        f"gains.{joint}: Jazzy has no single-joint effort position controller. Its command is "
-        f"now a trajectory: /{c.name}/joint_trajectory (trajectory_msgs/msg/JointTrajectory) or "
-        f"the /{c.name}/follow_joint_trajectory action, instead of a std_msgs/Float64 on "
-        f"/{c.name}/command.")
-    gains = _gains(c.values.get("pid"), c, joint, choices)
-    return Controller(c.name, "joint_trajectory_controller/JointTrajectoryController",
-                      {"joints": [joint], "command_interfaces": ["effort"],
-                       "state_interfaces": ["position", "velocity"], "gains": {joint: gains}},
-                      {joint: "effort"})
+def _position_pid(interface: str):
+    """effort_controllers/ and velocity_controllers/JointPositionController: a PID on the
+    position error, out an effort or a velocity. Jazzy's joint_trajectory_controller runs
+    the same PID on a lone effort or velocity command interface (its closed-loop PID
+    adapter, joint_trajectory_controller.cpp 4.42.1; ff_velocity_scale is 0 unless set)."""
+    def mapper(c, joints, choices) -> Controller | None:
+        joint = _joint(c, joints, choices)
+        if joint is None:
+            return None
+        choices.append(
+            f"{_where(c)}: `{c.name}` ({interface}_controllers/JointPositionController) became "
+            "a joint_trajectory_controller/JointTrajectoryController on "
+            f"`{interface}`, with its PID under gains.{joint}: Jazzy has no single-joint "
+            f"{interface} position controller. Its command is now a trajectory: "
+            f"/{c.name}/joint_trajectory (trajectory_msgs/msg/JointTrajectory) or the "
+            f"/{c.name}/follow_joint_trajectory action, instead of a std_msgs/Float64 on "
+            f"/{c.name}/command.")
+        gains = _gains(c.values.get("pid"), c, joint, choices)
+        return Controller(c.name, "joint_trajectory_controller/JointTrajectoryController",
+                          {"joints": [joint], "command_interfaces": [interface],
+                           "state_interfaces": ["position", "velocity"],
+                           "gains": {joint: gains}},
+                          {joint: interface})
+    return mapper
 
 
 def _velocity_pid(c, joints, choices) -> Controller | None:
@@ -367,7 +374,8 @@ def _ackermann(c, joints, choices) -> Controller | None:
 
 
 MAPPINGS = {
-    "effort_controllers/JointPositionController": _position_pid,
+    "effort_controllers/JointPositionController": _position_pid("effort"),
+    "velocity_controllers/JointPositionController": _position_pid("velocity"),
     "effort_controllers/JointVelocityController": _velocity_pid,
     "effort_controllers/JointEffortController":
         _forward("effort_controllers/JointGroupEffortController", "effort", group=False),

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+from pathlib import Path
 
 import yaml
 import pytest
@@ -80,6 +81,36 @@ def test_effort_position_pid_becomes_a_trajectory_controller_with_jazzy_gain_key
                                               "i_clamp_max": 0.5, "i_clamp_min": -0.5}}}
     assert arm.commands == {"a": "effort"}
     assert any("antiwindup" in c and "dropped" in c for c in plan.choices)
+
+
+# Every class ROS 1 (ros_controllers, noetic-devel) registers under velocity_controllers/:
+# velocity_controllers_plugins.xml, and joint_trajectory_controller's ros_control_plugins.xml
+VELOCITY_CONTROLLERS = ("JointVelocityController", "JointPositionController",
+                        "JointGroupVelocityController", "JointTrajectoryController")
+
+
+@pytest.mark.parametrize("kind", VELOCITY_CONTROLLERS)
+def test_every_ros1_velocity_controller_has_its_jazzy_counterpart(kind):
+    jazzy = json.loads((Path(__file__).with_name("jazzy_packages.json")).read_text())
+    group = kind.startswith("JointGroup") or kind == "JointTrajectoryController"
+    values = {"joints": ["a", "b"]} if group else {"joint": "a", "pid": {"p": 2.0}}
+    plan = _plan(_c("v", f"velocity_controllers/{kind}", **values))
+    made = plan.controllers[1]
+    assert made.type in jazzy["controller_types"]
+    assert set(made.commands.values()) == {"velocity"}
+
+
+def test_velocity_position_pid_becomes_a_trajectory_controller_on_velocity():
+    # ROS 1: a PID on the position error whose output is the joint's velocity command
+    plan = _plan(_c("arm", "velocity_controllers/JointPositionController", joint="a",
+                    pid={"p": 8, "i": 0.5, "d": 0.1}))
+    arm = plan.controllers[1]
+    assert arm.type == "joint_trajectory_controller/JointTrajectoryController"
+    assert arm.parameters == {"joints": ["a"], "command_interfaces": ["velocity"],
+                              "state_interfaces": ["position", "velocity"],
+                              "gains": {"a": {"p": 8.0, "i": 0.5, "d": 0.1}}}
+    assert any("velocity_controllers/JointPositionController" in c and "no counterpart" not in c
+               for c in plan.choices)
 
 
 def test_effort_velocity_pid_becomes_pid_controller_on_velocity():
