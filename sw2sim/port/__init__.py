@@ -32,6 +32,7 @@ from __future__ import annotations
 
 import hashlib
 import json
+import math
 import os
 import shutil
 import tempfile
@@ -176,8 +177,8 @@ def port(source: str | os.PathLike | Package, out: str | os.PathLike, *,
         files[f"rviz/{rviz_file.name}"] = text
     files["launch/display.launch.py"] = launch.display_launch(
         new_name, f"{new_name}.urdf", rviz_file.name if rviz_file else None)
-    files["launch/gazebo.launch.py"] = launch.gazebo_launch(new_name, f"{new_name}.urdf",
-                                                            planned.names)
+    files["launch/gazebo.launch.py"] = launch.gazebo_launch(
+        new_name, f"{new_name}.urdf", planned.names, _spawn_height(package, choices))
     folders = sorted({rel.split("/")[0] for rel in files})
     choices += _left_behind(package.root) if form is None else \
         ros2_form.left_behind(package.root, form)
@@ -224,6 +225,34 @@ def _ros1(package: Package, tree, new_name: str, urdf_rel: str, joints, effort,
     rewritten = urdf.rewrite(tree, package, new_name, commands, list(joints))
     choices += transmissions.choices + planned.choices + rewritten.choices
     return planned, added, rewritten
+
+
+def _spawn_height(package: Package, choices: list[str]) -> float:
+    """The height at which Gazebo spawns a free-floating robot so that its lowest collision
+    point at the rest pose touches the ground (z = 0), as `sw2sim convert` places it; 0 for
+    a robot fixed to the world, or one already standing on z = 0 (within a micrometre)."""
+    if package.world_fixed:
+        return 0.0
+    try:
+        import mujoco
+
+        from ..loader import load_package, lowest_collision_point
+        model = load_package(package).compile()
+        data = mujoco.MjData(model)
+        mujoco.mj_kinematics(model, data)
+        low = lowest_collision_point(model, data)
+    except Exception as exc:  # noqa: BLE001  (any model MuJoCo refuses: spawn as given)
+        choices.append(f"The robot is spawned at z = 0: its lowest point could not be measured "
+                       f"({str(exc).splitlines()[0][:160]}); `sw2sim check` on the source says why.")
+        return 0.0
+    if abs(low) <= 1e-6:
+        return 0.0
+    height = math.ceil(-low * 1e6) / 1e6     # up to the micrometre: never inside the ground
+    choices.append(f"launch/gazebo.launch.py spawns the robot at z = {height:g} m (create's -z): "
+                   f"its lowest collision point at the rest pose is at z = {low:.7g} m, so it "
+                   "starts on the ground instead of " +
+                   ("inside it." if low < 0 else "falling onto it."))
+    return height
 
 
 def _name(package: Package, wanted: str | None, choices: list[str]) -> str:

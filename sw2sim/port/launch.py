@@ -73,7 +73,7 @@ def generate_launch_description():
     gz_sim = os.path.join(get_package_share_directory("ros_gz_sim"), "launch",
                           "gz_sim.launch.py")
     spawn = Node(package="ros_gz_sim", executable="create", output="screen",
-                 arguments=["-topic", "robot_description", "-name", PACKAGE])
+                 arguments=["-topic", "robot_description", "-name", PACKAGE{spawn_z}])
     return LaunchDescription([
         # Gazebo finds package://{name}/... in the folder that holds the installed package.
         AppendEnvironmentVariable("GZ_SIM_RESOURCE_PATH", os.path.dirname(share)),
@@ -100,5 +100,9 @@ def display_launch(name: str, urdf: str, rviz: str | None) -> str:
                           rviz=RVIZ_ARGUMENT.format(rviz=rviz) if rviz else "")
 
 
-def gazebo_launch(name: str, urdf: str, controllers: list[str]) -> str:
-    return GAZEBO.format(name=name, urdf=urdf, controllers=json.dumps(list(controllers)))
+def gazebo_launch(name: str, urdf: str, controllers: list[str], z: float = 0.0) -> str:
+    """The Gazebo Sim launch file; `z` is the height `create` spawns the model at (its -z
+    flag, metres; ros_gz_sim's create.cpp), left out when 0."""
+    spawn_z = f',\n                            "-z", "{z:.6g}"' if z else ""
+    return GAZEBO.format(name=name, urdf=urdf, controllers=json.dumps(list(controllers)),
+                         spawn_z=spawn_z)

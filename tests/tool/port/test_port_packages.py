@@ -230,3 +230,30 @@ def test_ported_urdfs_load_in_yourdfpy_with_every_mesh(workspace):
         for meshes, scene in ((visuals, robot.scene), (collisions, robot.collision_scene)):
             loaded = [g for g in scene.geometry.values() if len(g.faces)]
             assert len(loaded) == len([m for m in meshes if not _empty(report, m)]) > 0, name
+
+
+def test_a_free_robot_is_spawned_on_the_ground_and_a_fixed_one_where_it_is(workspace):
+    import mujoco
+    from sw2sim.loader import lowest_collision_point
+    from sw2sim.package import find_package
+    _, reports = workspace
+    free = 0
+    for name, report in reports.items():
+        tree = ast.parse((report.package_dir / "launch" / "gazebo.launch.py").read_text())
+        (create,) = [c for c in _calls(tree) if getattr(c.func, "id", None) == "Node"
+                     and _keyword(c, "executable") == "create"]
+        arguments = [getattr(a, "value", None) for a in _keyword(create, "arguments").elts]
+        package = find_package(report.package_dir)
+        if package.world_fixed or any(_empty(report, m) for m in
+                                      _mesh_elements(package.urdf)):
+            assert "-z" not in arguments, name
+            continue
+        model = sw2sim.load_package(package).compile()
+        data = mujoco.MjData(model)
+        mujoco.mj_kinematics(model, data)
+        low = lowest_collision_point(model, data)
+        z = float(arguments[arguments.index("-z") + 1])
+        assert 0 <= z + low < 2e-6, (name, z, low)
+        assert any(f"z = {z:g} m" in c for c in report.choices), name
+        free += 1
+    assert free >= 2      # the exporter's arm and the renamed four-wheeler
