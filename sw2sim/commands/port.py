@@ -32,7 +32,8 @@ exporter's CSV say. Exit status: 0 written, 2 the input or OUT cannot be used.
 
 examples:
   sw2sim port examples/example_3 -o ~/ros2_ws/src/example_3
-  sw2sim port my_robot.zip -o ~/ros2_ws/src/my_robot --name my_robot
+  sw2sim port my_robot.zip -o ~/ros2_ws/src/my_robot --name my_robot \\
+      --maintainer "Ada Lovelace <ada@example.org>" --license Apache-2.0
   sw2sim port examples/example_1 -o ~/ros2_ws/src/example_1 \\
       --effort-joints front_left_joint,front_right_joint,rear_left_joint,rear_right_joint
 """
@@ -52,6 +53,12 @@ def add_arguments(parser) -> None:
     parser.add_argument("--no-controllers", dest="default_controllers", action="store_false",
                         help="give an export without transmissions and controllers none: its "
                              "joints then only report their state")
+    parser.add_argument("--maintainer", metavar='"NAME <E-MAIL>"',
+                        help="package.xml's maintainer (default: the source's; the exporter "
+                             "leaves TODO)")
+    parser.add_argument("--license", metavar="LICENCE",
+                        help="package.xml's licence, such as Apache-2.0 or BSD-3-Clause "
+                             "(default: the source's, else TODO)")
     urdf_choice(parser)
 
 
@@ -61,7 +68,8 @@ def run(args) -> int:
     try:
         package = find_package(args.path, urdf=args.urdf)
         report = port(package, args.output, name=args.name, effort_joints=args.effort_joints,
-                      default_controllers=args.default_controllers)
+                      default_controllers=args.default_controllers,
+                      maintainer=args.maintainer, license=args.license)
     except (LoadError, PortError) as exc:
         say(f"sw2sim port: {exc}")
         return EXIT_UNUSABLE

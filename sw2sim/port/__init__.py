@@ -98,8 +98,8 @@ class PortReport:
 
 
 def port(source: str | os.PathLike | Package, out: str | os.PathLike, *,
-         name: str | None = None, effort_joints=(), default_controllers: bool = True
-         ) -> PortReport:
+         name: str | None = None, effort_joints=(), default_controllers: bool = True,
+         maintainer: str | None = None, license: str | None = None) -> PortReport:
     """Write the ROS 2 package for the ROS 1 package at `source` into the folder `out`.
 
     A package with no transmissions and no ROS 1 controllers (an export as the exporter
@@ -116,6 +116,15 @@ def port(source: str | os.PathLike | Package, out: str | os.PathLike, *,
     shown_source = shown(package.root) or str(package.source or package.root)
     choices: list[str] = []
     new_name = _name(package, name, choices)
+    person = None
+    if maintainer is not None:
+        try:
+            person = manifest.parse_maintainer(maintainer)
+        except ValueError as exc:
+            raise PortError(f"--maintainer: {exc}") from None
+    if license is not None and not license.strip():
+        raise PortError("--license: give the licence's name, such as Apache-2.0 or "
+                        "BSD-3-Clause (SPDX identifiers)")
     if package.manifest is None:
         choices.append(f"The source has no package.xml: its name `{package.name}` was read from "
                        f"{package.name_from}, and package.xml and CMakeLists.txt were written "
@@ -183,7 +192,8 @@ def port(source: str | os.PathLike | Package, out: str | os.PathLike, *,
     choices += _left_behind(package.root) if form is None else \
         ros2_form.left_behind(package.root, form)
     files["package.xml"] = manifest.package_xml(
-        new_name, package.manifest, [c.package for c in planned.controllers], choices)
+        new_name, package.manifest, [c.package for c in planned.controllers], choices,
+        maintainer=person, license=license)
     files["CMakeLists.txt"] = cmake.cmakelists(new_name, folders)
     order = ["package.xml", "CMakeLists.txt", "README.md"]
     listed = order + sorted(f for f in files if f not in order)

@@ -23,9 +23,24 @@ EMAIL = re.compile(r"^[-a-zA-Z0-9_%+]+(\.[-a-zA-Z0-9_%+]+)*@[-a-zA-Z0-9%]+(\.[-a
 VERSION = re.compile(r"^(0|[1-9][0-9]*)\.(0|[1-9][0-9]*)\.(0|[1-9][0-9]*)$")
 
 
+def parse_maintainer(text: str) -> tuple[str, str]:
+    """--maintainer "Name <e-mail>" as (name, e-mail); ValueError with the reason when
+    catkin_pkg would refuse it."""
+    match = re.fullmatch(r"\s*([^<>]*?)\s*<\s*([^<>\s]+)\s*>\s*", text)
+    if not match or not match.group(1):
+        raise ValueError(f"{text!r} is not NAME <E-MAIL>; write it as \"Ada Lovelace "
+                         "<ada@example.org>\", quoted")
+    who, email = match.groups()
+    if not EMAIL.match(email):
+        raise ValueError(f"{email!r} is not an e-mail address catkin_pkg accepts")
+    return who, email
+
+
 def package_xml(name: str, manifest: etree._Element | None, controller_packages: list[str],
-                choices: list[str]) -> str:
-    """The text of package.xml; what was replaced is appended to `choices`."""
+                choices: list[str], *, maintainer: tuple[str, str] | None = None,
+                license: str | None = None) -> str:
+    """The text of package.xml; what was replaced is appended to `choices`. `maintainer`
+    (name, e-mail) and `license` (--maintainer, --license) replace the source's."""
     get = (lambda tag: (manifest.findtext(tag) or "").strip()) if manifest is not None \
         else (lambda tag: "")
     version = get("version")
@@ -39,12 +54,19 @@ def package_xml(name: str, manifest: etree._Element | None, controller_packages:
     licenses = [(e.text or "").strip() for e in manifest.findall("license")] \
         if manifest is not None else []
     licenses = [lic for lic in licenses if lic]
-    if not licenses:
+    if license is not None:
+        licenses = [license.strip()]
+    elif not licenses:
         licenses = ["TODO"]
         choices.append("package.xml: the source names no licence; `TODO` was written. Put "
-                       "your licence there (BSD-3-Clause, Apache-2.0, ...).")
+                       "your licence there (BSD-3-Clause, Apache-2.0, ...), or port again "
+                       "with --license.")
     maintainers = []
-    for person in (manifest.findall("maintainer") if manifest is not None else []):
+    people = manifest.findall("maintainer") if manifest is not None and maintainer is None \
+        else []
+    if maintainer is not None:
+        maintainers.append(maintainer)
+    for person in people:
         who, email = (person.text or "").strip(), (person.get("email") or "").strip()
         if not EMAIL.match(email):
             choices.append(f"package.xml: the maintainer e-mail {email or '(none)'!r} is not one "
@@ -55,10 +77,12 @@ def package_xml(name: str, manifest: etree._Element | None, controller_packages:
     if not maintainers:
         maintainers = [("TODO", PLACEHOLDER_EMAIL)]
         choices.append(f"package.xml: the source has no maintainer; TODO <{PLACEHOLDER_EMAIL}> "
-                       "was written. Put your own name and e-mail.")
+                       "was written. Put your own name and e-mail, or port again with "
+                       "--maintainer \"NAME <E-MAIL>\".")
     elif any(who == "TODO" or email.lower().startswith("todo@") for who, email in maintainers):
         choices.append("package.xml: the maintainer is the exporter's placeholder (TODO); "
-                       "put your own name and e-mail.")
+                       "put your own name and e-mail, or port again with --maintainer "
+                       "\"NAME <E-MAIL>\".")
     depends = list(dict.fromkeys([*LAUNCH_DEPENDS, *controller_packages]))
     lines = ['<?xml version="1.0"?>',
              '<?xml-model href="http://download.ros.org/schema/package_format3.xsd" '

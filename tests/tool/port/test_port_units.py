@@ -275,3 +275,33 @@ def test_package_xml_passes_catkin_pkg_validation_in_format_3(tmp_path):
     assert package["name"] == "arm_assembly"
     assert package["buildtool"] == ["ament_cmake"]
     assert {"joint_trajectory_controller", "gz_ros2_control", "ros_gz_sim"} <= set(package["exec"])
+
+
+def test_maintainer_and_license_options_give_a_package_xml_catkin_pkg_takes_silently(
+        tmp_path, capsys):
+    """The exporter leaves the maintainer TODO (TODO@email.com, which catkin_pkg refuses) and
+    no licence: --maintainer and --license put the user's, and catkin_pkg validates the
+    result in format 3 without a warning."""
+    from sw2sim.cli import main
+    if not ros2_environment.PYTHON.exists():
+        pytest.skip(ros2_environment.missing())
+    src = copy_example(3, tmp_path / "src")
+    out = tmp_path / "out"
+    assert main(["port", str(src), "-o", str(out), "--maintainer",
+                 "Ada Lovelace <ada.lovelace@example.org>", "--license", "Apache-2.0"]) == 0
+    assert "placeholder (TODO)" not in capsys.readouterr().out
+    done = ros2_environment.run(
+        "import json, sys; from catkin_pkg.package import parse_package\n"
+        "warnings = []; p = parse_package(sys.argv[1], warnings=warnings)\n"
+        "p.validate(warnings=warnings)\n"
+        "print(json.dumps({'warnings': warnings, 'licenses': [str(x) for x in p.licenses],\n"
+        "  'maintainers': [[m.name, m.email] for m in p.maintainers]}))",
+        str(out / "package.xml"))
+    assert done.returncode == 0, done.stderr
+    package = json.loads(done.stdout)
+    assert package == {"warnings": [], "licenses": ["Apache-2.0"],
+                       "maintainers": [["Ada Lovelace", "ada.lovelace@example.org"]]}
+    for bad in ("ada@example.org", "Ada <ada@example>"):
+        assert main(["port", str(src), "-o", str(tmp_path / "bad"), "--maintainer", bad]) == 2
+        assert "--maintainer" in capsys.readouterr().err
+    assert not (tmp_path / "bad").exists()
