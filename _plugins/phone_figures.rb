@@ -11,22 +11,32 @@
 # and this hook turns every <img> whose file has a phone variant into
 #
 #     <picture class="figure-picture">
-#       <source media="(max-width: 41.99rem), ..." srcset="/media/.../knuckle_angles-phone.png"
-#               width="650" height="975">
+#       <source media="(max-width: 41.99rem), ..."
+#               srcset="/media/.../knuckle_angles-phone.png 720w, /media/.../knuckle_angles-phone-3x.png 1080w"
+#               sizes="(max-width: 59.99rem) calc(100vw - 2rem), calc(100vw - 22rem)"
+#               width="720" height="1080">
 #       <img src="/media/.../knuckle_angles.png" alt="..." width="1560" height="598" ...>
 #     </picture>
 #
-# The <img> keeps everything it had: its alt text, its src (the figure as wider windows
-# show it, and what the enlarged view opens: assets/js/site.js) and the size
-# lazy_images.rb reads from its file; the <source> carries the phone variant's own size,
-# so that the browser reserves the right space before the picture arrives.
+# A plot's phone variant has two files, for screens of 2 and of 3 device pixels to the CSS
+# pixel (course/plotting.py): the srcset offers both by their widths, and `sizes` says how
+# wide the column is, so that the browser fetches the one the screen needs. A drawing's
+# (an SVG) is one file. The <img> keeps everything it had: its alt text, its src (the
+# figure as wider windows show it, and what the enlarged view opens: assets/js/site.js)
+# and the size lazy_images.rb reads from its file; the <source> carries the phone
+# variant's own size, so that the browser reserves the right space before the picture
+# arrives.
 module Sw2simSite
   module PhoneFigures
     SUFFIX = "-phone"
+    DENSE_SUFFIX = "-3x"
     # Windows whose text column is narrower than 640 px (assets/css/main.css): below 60rem
     # the column is the window less 2rem of margins; from 60rem the sidebar and the page's
     # margins take 22rem, so the column is narrower than 640 px up to 62rem.
     NARROW = "(max-width: 41.99rem), (min-width: 60rem) and (max-width: 61.99rem)"
+    # The column's width in those windows: the window less the margins, and from 60rem less
+    # the sidebar too.
+    COLUMN = "(max-width: 59.99rem) calc(100vw - 2rem), calc(100vw - 22rem)"
     IMG = /<img\b[^>]*>/i.freeze
     SRC = /\bsrc="([^"]+)"/i.freeze
 
@@ -41,9 +51,27 @@ module Sw2simSite
 
         size = LazyImages.size_of(file)
         dimensions = size ? %( width="#{size[0]}" height="#{size[1]}") : ""
-        %(<picture class="figure-picture"><source media="#{NARROW}" srcset="#{phone_src}"#{dimensions}>) +
-          "#{tag}</picture>"
+        %(<picture class="figure-picture"><source media="#{NARROW}" #{candidates(phone_src, file, size)}) +
+          "#{dimensions}>#{tag}</picture>"
       end
+    end
+
+    # The srcset (and sizes) of a phone variant: its one file, or with its file for screens
+    # of 3 pixels to the CSS pixel beside it, both by their widths.
+    def candidates(phone_src, file, size)
+      dense_file = dense_variant(file)
+      dense_size = size && dense_file && File.file?(dense_file) && LazyImages.size_of(dense_file)
+      return %(srcset="#{phone_src}") unless dense_size
+
+      %(srcset="#{phone_src} #{size[0]}w, #{dense_variant(phone_src)} #{dense_size[0]}w" sizes="#{COLUMN}")
+    end
+
+    # The address (or file) of the dense file beside a phone variant's PNG (nil for an SVG).
+    def dense_variant(phone)
+      path, rest = phone.split(/(?=[?#])/, 2)
+      return nil unless path =~ /\.png\z/i
+
+      path.sub(/\.png\z/i, "#{DENSE_SUFFIX}.png") + rest.to_s
     end
 
     # The phone variant's address of a figure under /media/ (nil for any other image).

@@ -18,6 +18,15 @@ SUFFIX = "-phone"
 # a 390 px phone shows it 30 px wider.
 SHOWN_PX = 328.0
 MIN_TEXT_PX = 9.0
+# The engineering drawings' lettering, as dimensions and balloons are read one by one
+# rather than at a glance: at least this high in the column (course/drawing/narrow.py).
+DRAWING_MIN_TEXT_PX = 11.0
+
+
+# A plot's phone variant (a PNG) is drawn for screens of 2 device pixels to the CSS pixel
+# (its own file) and, beside it, for screens of 3 (DENSE_SUFFIX added: x-phone-3x.png); the
+# page lets the browser choose (_plugins/phone_figures.rb). A drawing (SVG) is sharp on any.
+DENSE_SUFFIX = "-3x"
 
 
 def phone_path(path: str | Path) -> Path:
@@ -26,6 +35,20 @@ def phone_path(path: str | Path) -> Path:
     return path.with_name(f"{path.stem}{SUFFIX}{path.suffix}")
 
 
-def phone_output(output: str) -> str:
-    """The phone variant's output path (from the repository root) of the figure `output`."""
-    return phone_path(output).as_posix()
+def dense_path(path: str | Path) -> Path:
+    """Where the 3 pixels to the CSS pixel file of the phone variant of the plot at `path`
+    goes: beside the phone variant, DENSE_SUFFIX added."""
+    phone = phone_path(path)
+    return phone.with_name(f"{phone.stem}{DENSE_SUFFIX}{phone.suffix}")
+
+
+def phone_paths(path: str | Path) -> list[Path]:
+    """Every file of the phone variant of the figure at `path`: the variant, and for a plot
+    (a PNG) its file for screens of 3 pixels to the CSS pixel."""
+    path = Path(path)
+    return [phone_path(path), *([dense_path(path)] if path.suffix == ".png" else [])]
+
+
+def phone_outputs(output: str) -> list[str]:
+    """The phone variant's output paths (from the repository root) of the figure `output`."""
+    return [p.as_posix() for p in phone_paths(output)]

@@ -10,7 +10,7 @@ A phone shows the column some 330 px wide, where a plot laid out for 736 px woul
 its lettering at half its size. So `variants` draws a plot twice with the same code: as
 the pages show it on wider screens, and for phones (course/phone.py), narrower, its
 panels one above the other and its text at least PHONE.min_text_px high in a column
-PHONE.shown_px wide.
+PHONE.shown_px wide, in two files, for screens of 2 and of 3 pixels to the CSS pixel.
 """
 
 from __future__ import annotations
@@ -22,7 +22,7 @@ import matplotlib
 import numpy as np
 
 from . import phone
-from .phone import phone_path
+from .phone import dense_path, phone_path
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
@@ -56,9 +56,12 @@ class Layout:
 
 DESKTOP = Layout(SHOWN_PX, MIN_TEXT_PX)
 PHONE = Layout(phone.SHOWN_PX, phone.MIN_TEXT_PX)
-# The phone variant is 650 px wide: about twice the width it is shown at, sharp on a
-# phone's screen and in the enlarged view.
+# The phone variant is laid out 5 in wide, and saved twice: for screens of 2 and of 3
+# device pixels to the CSS pixel, PHONE_PIXELS wide, 2 and 3 times the column of a 390 px
+# phone (358 px; a 360 px phone's, 328 px, takes the same files), the page offering both
+# (_plugins/phone_figures.rb).
 PHONE_WIDTH_IN = 5.0
+PHONE_PIXELS = (720, 1080)
 # A panel on the phone keeps its shape, a little taller (its lettering takes a larger
 # share of it), and is never flatter or taller than these shares of the width.
 PHONE_STRETCH = 1.15
@@ -93,7 +96,7 @@ def variants(path: str | Path, nrows: int = 1, ncols: int = 1, *, figsize: tuple
     fig, axes = phone_figure(nrows, ncols, figsize=figsize, phone_figsize=phone_figsize,
                              phone_grid=phone_grid, **kwargs)
     yield fig, axes, True
-    save(fig, phone_path(path), PHONE)
+    save(fig, phone_path(path), PHONE, dense=dense_path(path))
 
 
 def phone_figure(nrows: int, ncols: int, *, figsize: tuple[float, float],
@@ -161,14 +164,16 @@ def _share(axes: np.ndarray, which: str, how) -> None:
                 axes[r, c].tick_params(axis="x", labelbottom=False)
 
 
-def save(fig, path: str | Path, layout: Layout = DESKTOP) -> None:
+def save(fig, path: str | Path, layout: Layout = DESKTOP, dense: str | Path | None = None) -> None:
     """Raise any text too small for where the figure is shown (`layout`), then save and
     close. The only metadata is the smallest text's size, so identical plots give
-    identical files."""
+    identical files. With `dense` (a phone variant), the figure is saved PHONE_PIXELS[0]
+    wide at `path` and PHONE_PIXELS[1] wide at `dense`."""
     with plt.rc_context(STYLE):
         dpi = plt.rcParams["savefig.dpi"]
         width = fig.get_figwidth() * dpi
         # points for min_text_px on the page: the image is shown min(shown_px, width) wide
+        # (a phone variant is wider than the column at any density: shown_px wide)
         least = layout.min_text_px * 72.0 / dpi * width / min(layout.shown_px, width)
         for ax in fig.axes:
             ax.tick_params(which="both", labelsize=max(least, _tick_size(ax)))
@@ -177,9 +182,34 @@ def save(fig, path: str | Path, layout: Layout = DESKTOP) -> None:
             if text.get_fontsize() < least:
                 text.set_fontsize(least)
         fig.canvas.draw()
-        smallest = min((t.get_fontsize() for t in _texts(fig)), default=0.0) * dpi / 72.0
-        fig.savefig(path, metadata={"Software": None, TEXT_KEY: f"{smallest:.2f}"})
+        points = min((t.get_fontsize() for t in _texts(fig)), default=0.0)
+        files = [(path, dpi)] if dense is None else \
+            [(file, pixels / fig.get_figwidth()) for file, pixels in zip((path, dense), PHONE_PIXELS)]
+        for file, file_dpi in files:
+            text = {TEXT_KEY: f"{points * file_dpi / 72.0:.2f}"}
+            if dense is None:
+                fig.savefig(file, dpi=file_dpi, metadata={"Software": None, **text})
+            else:
+                _save_paletted(fig, file, file_dpi, text)
     plt.close(fig)
+
+
+def _save_paletted(fig, path: str | Path, dpi: float, text: dict[str, str]) -> None:
+    """Save the figure as a PNG of 256 colours (the phone variants: a phone downloads the
+    sharper files in fewer bytes than the full-colour ones; the renders some plots show
+    keep their shading but for faint steps in the sky), with `text` its only metadata."""
+    from io import BytesIO
+
+    from PIL import Image, PngImagePlugin
+    buffer = BytesIO()
+    fig.savefig(buffer, dpi=dpi, format="png")
+    buffer.seek(0)
+    with Image.open(buffer) as image:
+        paletted = image.convert("RGB").quantize(256, method=Image.Quantize.FASTOCTREE)
+    info = PngImagePlugin.PngInfo()
+    for key, value in text.items():
+        info.add_text(key, value)
+    paletted.save(path, format="PNG", optimize=True, pnginfo=info)
 
 
 def _tick_size(ax) -> float:

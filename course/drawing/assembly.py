@@ -386,17 +386,49 @@ def assembly_drawing_svg(robot, views_only: bool = False, width: float | None = 
         return document(layers, title)
     views = [(name, prims) for name, prims in layers if name != "sheet"]
     x0, _, x1, y1 = bbox([p for _, prims in views for p in prims])
-    key = [Text(x0, y1 + 6.0 + i * 1.4 * KEY_TEXT,
-                f"{item.number}  {item.part.title or item.part.name} ({item.part.name}.SLDPRT)"
-                f" × {len(item.links)}", KEY_TEXT, "start") for i, item in enumerate(items)]
+    # the key's lines as wide as the views at most where they must fit a width (a phone's)
+    room = None if width is None else max(width, x1 - x0)
+    rows = [(str(item.number), f"{item.part.title or item.part.name} ({item.part.name}.SLDPRT)"
+             f" × {len(item.links)}", "text") for item in items]
     # the joints' names, when the narrow views mark each origin with a letter instead
-    key += [Text(x0, y1 + 6.0 + (len(items) + i) * 1.4 * KEY_TEXT, f"{letter}  {name}", KEY_TEXT, "start",
-                 style="jointtext") for i, (letter, name) in enumerate(joints)]
+    rows += [(letter, name, "jointtext") for letter, name in joints]
+    key = []
+    for mark, entry, style in rows:
+        for indent, line in _key_lines(mark, entry, room):
+            key.append(Text(x0 + indent, y1 + 6.0 + len(key) * 1.4 * KEY_TEXT, line, KEY_TEXT, "start",
+                            style=style))
     views.append(("key", key))
     return document(views, title, views_box(views))
 
 
 KEY_TEXT = 4.1  # mm: the key to the balloons under the views, as large as the joints' names
+
+
+def _key_lines(mark: str, entry: str, width: float | None) -> list[tuple[float, str]]:
+    """One line of the key, (its indent in mm, its text): `mark` (a balloon's number or a
+    joint's letter) then `entry`; or, where that is wider than `width` mm, the entry broken
+    between words onto lines set under its first word (a word wider than the room keeps a
+    line of its own, and a count, "× 2", the word before it)."""
+    lead = f"{mark}  "
+    if width is None or text_width(lead + entry, KEY_TEXT) <= width:
+        return [(0.0, lead + entry)]
+    indent = text_width(lead, KEY_TEXT)
+    lines, line = [], ""
+    words: list[str] = []
+    for word in entry.split(" "):   # "× 2" stays with the word before it
+        if words and (word == "×" or words[-1].endswith("×")):
+            words[-1] += " " + word
+        else:
+            words.append(word)
+    for word in words:
+        trial = f"{line} {word}".strip()
+        if line and indent + text_width(trial, KEY_TEXT) > width:
+            lines.append(line)
+            line = word
+        else:
+            line = trial
+    lines.append(line)
+    return [(0.0, lead + lines[0])] + [(indent, text) for text in lines[1:]]
 
 
 def _assembly_layers(robot, width: float | None = None, joints: list | None = None) -> tuple[list, list]:

@@ -5,7 +5,7 @@ cannot show, and `dimension_text` and `angle_degrees` give what a dimension read
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 import shapely
@@ -137,6 +137,15 @@ def _dimension_draft(dim: Dimension | Angle, k: float, centre: tuple[float, floa
                   pt(min(line_lo, lo - clear - tw), lam), pt(line_hi, lam))
         outward = (lo + hi) / 2 >= float(np.array(centre) @ U) - 1e-6
         options = [after, before] if outward else [before, after]
+        # where both are taken (a drawing made small for a phone's column): the text over the
+        # middle of the line, which runs on under it, or any of the three under the line
+        middle = (lo + hi) / 2
+        over = (Text(*pt(middle, lam + TEXT_GAP), text, DIM_TEXT, "middle", angle),
+                pt(min(line_lo, middle - tw / 2), lam), pt(max(line_hi, middle + tw / 2), lam))
+        under = lam - TEXT_GAP - 0.8 * DIM_TEXT
+        options += [over] + [(replace(t, x=t.x + (under - lam - TEXT_GAP) * W[0],
+                                      y=t.y + (under - lam - TEXT_GAP) * W[1]), p, q)
+                             for t, p, q in (*options, over)]
     return _DimDraft(lines, options, segments)
 
 
@@ -194,20 +203,21 @@ def view_dimensions(dims: list[Dimension | Angle], k: float, centre: tuple[float
     """All dimensions of one view, each text placed clear of the others' texts and lines.
 
     Texts with one place (inside their dimension line) are placed first, then the others, each
-    at the first of its places clear of what is placed already. When `placed` is a list, each
+    at the first of its places clear of what is placed already, or failing that (a drawing
+    made small) the first clear of the texts placed already. When `placed` is a list, each
     dimension is appended to it with the text it was given, as (dimension, Text): what the sheet
     shows for it."""
     drafts = [_dimension_draft(d, k, centre) for d in dims]
     blockers = [LineString(seg) for dr in drafts for seg in dr.segments]
+    texts: list = []
     chosen: dict[int, tuple] = {}
     for i in sorted(range(len(drafts)), key=lambda i: len(drafts[i].options) > 1):
-        chosen[i] = drafts[i].options[0]
-        for option in drafts[i].options:
-            box = shapely.box(*bbox([option[0]]))
-            if not any(box.intersects(b) for b in blockers):
-                chosen[i] = option
-                break
-        blockers.append(shapely.box(*bbox([chosen[i][0]])).buffer(0.5))
+        boxes = [shapely.box(*bbox([option[0]])) for option in drafts[i].options]
+        clear = [o for o, box in zip(drafts[i].options, boxes) if not any(box.intersects(b) for b in blockers)]
+        apart = [o for o, box in zip(drafts[i].options, boxes) if not any(box.intersects(b) for b in texts)]
+        chosen[i] = (clear or apart or drafts[i].options)[0]
+        texts.append(shapely.box(*bbox([chosen[i][0]])).buffer(0.5))
+        blockers.append(texts[-1])
     out = []
     for i, (dim, dr) in enumerate(zip(dims, drafts)):
         text, p, q = chosen[i]

@@ -2,8 +2,8 @@
 
 The pages show a drawing's views (`views_only`) as wide as the text column. On a phone the
 column is course.phone.SHOWN_PX wide, and the views' smallest lettering reads
-course.phone.MIN_TEXT_PX high there only if the views' box is at most that lettering's
-size × SHOWN_PX / MIN_TEXT_PX wide (127 mm for 3.5 mm lettering). Views wider than that get
+course.phone.DRAWING_MIN_TEXT_PX high there only if the views' box is at most that lettering's
+size × SHOWN_PX / DRAWING_MIN_TEXT_PX wide (104.4 mm for 3.5 mm lettering). Views wider than that get
 a narrow variant, the phone variant of the figure (course/phone.py): a part's three views
 one above the other (the sheet puts the side view beside the front view), and, if that is
 still too wide, an assembly's or a part's views drawn smaller, the lettering as large as
@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import re
 
-from ..phone import MIN_TEXT_PX, SHOWN_PX
+from ..phone import DRAWING_MIN_TEXT_PX, SHOWN_PX
 from .assembly import assembly_drawing_svg
 from .sheet import part_views_narrow_svg
 from .svg import VIEWS_MARGIN
@@ -26,8 +26,8 @@ FONT_SIZE = re.compile(r'font-size="([\d.]+)"')
 
 def readable_width(svg: str) -> float:
     """The widest box (mm) the drawing's views may have for their smallest lettering to read
-    MIN_TEXT_PX high in a column SHOWN_PX wide."""
-    return min(float(s) for s in FONT_SIZE.findall(svg)) * SHOWN_PX / MIN_TEXT_PX
+    DRAWING_MIN_TEXT_PX high in a column SHOWN_PX wide."""
+    return min(float(s) for s in FONT_SIZE.findall(svg)) * SHOWN_PX / DRAWING_MIN_TEXT_PX
 
 
 def too_wide(svg: str) -> bool:

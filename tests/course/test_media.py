@@ -18,7 +18,7 @@ from PIL import Image
 
 from course.media import all_figures, is_current, make_figure, read_manifest
 from course.phone import SUFFIX as PHONE_SUFFIX
-from course.phone import phone_path
+from course.phone import DENSE_SUFFIX, phone_paths
 from repository import ROOT
 
 FIGURES = all_figures()
@@ -104,7 +104,7 @@ def test_figure_matches_what_its_code_makes(fig, made, current):
     if isinstance(result, str):   # a program it needs is not installed here (RViz, say)
         pytest.skip(f"{fig.output} cannot be made here: {result}")
     # the figure, then its phone variant if it has one
-    for output, made_now in zip(fig.outputs, (fresh, phone_path(fresh))):
+    for output, made_now in zip(fig.outputs, (fresh, *phone_paths(fresh))):
         committed = ROOT / output
         if committed.suffix == ".svg":
             assert made_now.read_text() == committed.read_text(), f"{output} differs; run `make media`"
@@ -120,7 +120,8 @@ def test_every_phone_variant_is_made_by_the_figure_it_belongs_to():
     """media/ holds a phone variant (course/phone.py) for exactly the figures whose code
     makes one: none left over from a figure that no longer has one."""
     made = {output for fig in FIGURES for output in fig.outputs[1:]}
-    on_disk = {p.relative_to(ROOT).as_posix() for p in (ROOT / "media").rglob(f"*{PHONE_SUFFIX}.*")}
+    on_disk = {p.relative_to(ROOT).as_posix() for pattern in (f"*{PHONE_SUFFIX}.*", f"*{PHONE_SUFFIX}{DENSE_SUFFIX}.*")
+               for p in (ROOT / "media").rglob(pattern)}
     assert on_disk == made, (f"left over: {sorted(on_disk - made)}; "
                              f"missing (run `make media`): {sorted(made - on_disk)}")
 

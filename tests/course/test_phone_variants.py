@@ -14,7 +14,7 @@ from course.drawing import narrow, part_drawing_svg
 from course.practices.practice_5 import design as practice_5
 
 
-def test_a_plot_is_drawn_twice_and_its_phone_variant_reads_9_px_in_a_phones_column(tmp_path):
+def test_a_plot_is_drawn_twice_and_its_phone_variant_reads_9_px_in_a_phones_column_at_2x_and_3x(tmp_path):
     path = tmp_path / "plot.png"
     shapes = []
     for fig, axes, on_phone in plotting.variants(path, 2, 2, figsize=(11, 5), sharex="col",
@@ -24,11 +24,15 @@ def test_a_plot_is_drawn_twice_and_its_phone_variant_reads_9_px_in_a_phones_colu
             ax.plot([0, 1, 2], [0, 1, 0])
             ax.set_xlabel("time [s]")
     assert shapes == [((2, 2), False), ((2, 2), True)], "the same axes, laid out twice"
-    desktop, small = Image.open(path), Image.open(phone.phone_path(path))
-    assert small.width == round(plotting.PHONE_WIDTH_IN * 130) < desktop.width
+    desktop, small, dense = Image.open(path), Image.open(phone.phone_path(path)), Image.open(phone.dense_path(path))
+    assert (small.width, dense.width) == plotting.PHONE_PIXELS
+    assert small.width >= 2 * 358 and dense.width >= 3 * 358, "2 and 3 pixels a CSS pixel on a 390 px phone"
     assert small.height > desktop.height and small.height > small.width, "the panels one above the other"
-    smallest = float(small.info[plotting.TEXT_KEY]) * phone.SHOWN_PX / small.width
-    assert smallest >= phone.MIN_TEXT_PX - 0.01
+    assert abs(dense.height / dense.width - small.height / small.width) < 0.002, "the same picture"
+    shown = [float(image.info[plotting.TEXT_KEY]) * phone.SHOWN_PX / image.width for image in (small, dense)]
+    assert min(shown) >= phone.MIN_TEXT_PX - 0.01
+    assert shown[0] == pytest.approx(shown[1], abs=0.01), "the same lettering at either density"
+    assert small.mode == dense.mode == "P", "256 colours"
 
 
 def test_on_a_phone_the_columns_of_panels_go_one_above_the_other():
@@ -62,8 +66,51 @@ def test_a_drawing_too_wide_for_a_phone_gets_narrow_views_with_lettering_as_larg
     assert min(sizes) == min(float(s) for s in re.findall(r'font-size="([\d.]+)"', views))
     order = [re.search(rf'<g id="view-{v}">', small).start() for v in ("front", "top", "side")]
     assert order == sorted(order)
-    assert not narrow.too_wide(part_drawing_svg(practice_5.knuckle(), views_only=True)), \
-        "a drawing narrow enough as it is needs no variant"
+    fits = f'<svg viewBox="0 0 {narrow.readable_width(views) - 1:.1f} 80"><text font-size="3.5">1</text></svg>'
+    assert not narrow.too_wide(fits), "a drawing narrow enough as it is needs no variant"
+    assert narrow.readable_width(views) == pytest.approx(3.5 * phone.SHOWN_PX / 11.0), \
+        "3.5 mm lettering 11 px high in a 360 px phone's column"
+
+
+def overlapping_texts(svg: str) -> list[tuple[str, str]]:
+    """Pairs of texts of a drawing whose boxes (course.drawing.svg.Text.points) overlap."""
+    import itertools
+    import shapely
+    from course.drawing.svg import Text
+    texts = []
+    for attributes, body in re.findall(r"<text ([^>]*)>([^<]*)</text>", svg):
+        a = dict(re.findall(r'([\w-]+)="([^"]*)"', attributes))
+        turned = re.match(r"rotate\(([-\d.]+)", a.get("transform", ""))
+        text = Text(float(a["x"]), float(a["y"]), body, float(a["font-size"]), a.get("text-anchor", "start"),
+                    float(turned[1]) if turned else 0.0)
+        corners = text.points()
+        texts.append((body, shapely.Polygon([corners[0], corners[1], corners[3], corners[2]]).buffer(-0.15)))
+    return [(a, b) for (a, pa), (b, pb) in itertools.combinations(texts, 2) if pa.intersects(pb)]
+
+
+def test_the_chassis_narrow_views_keep_every_dimension_with_no_text_on_another():
+    """Drawn small for a phone, the chassis (the widest part) keeps each dimension's text,
+    and a text that fits nowhere beside its line goes over its middle or under the line
+    rather than on another text."""
+    part = practice_5.chassis()
+    views = part_drawing_svg(part, views_only=True)
+    small = narrow.part_views_narrow(part, views)
+    words = sorted(re.findall(r"<text [^>]*>([^<]*)</text>", views))
+    assert sorted(re.findall(r"<text [^>]*>([^<]*)</text>", small)) == words
+    assert overlapping_texts(views) == []
+    assert overlapping_texts(small) == []
+
+
+def test_an_assembly_key_too_wide_for_a_phone_breaks_between_words():
+    from course.practices.practice_3 import design as practice_3
+    robot = practice_3.robot()
+    from course.drawing import assembly_drawing_svg
+    desktop = assembly_drawing_svg(robot, views_only=True)
+    small = narrow.assembly_views_narrow(robot, desktop)
+    assert not narrow.too_wide(small)
+    assert "End arm with fixed fingers (end_arm_link.SLDPRT) × 1" in desktop
+    lines = re.findall(r"<text [^>]*>([^<]*)</text>", small)
+    assert "3  End arm with fixed fingers" in lines and "(end_arm_link.SLDPRT) × 1" in lines
 
 
 def test_a_figure_whose_code_and_declaration_disagree_about_its_phone_variant_is_refused(
@@ -79,4 +126,6 @@ def test_a_figure_whose_code_and_declaration_disagree_about_its_phone_variant_is
                         lambda: [media.Figure("media/x.svg", lambda p: p.write_text("<svg/>"), phone=True)])
     with pytest.raises(RuntimeError, match="give it phone=False"):
         media.make_figure("media/x.svg", tmp_path / "x.svg")
-    assert media.Figure("media/x.png", with_variant, phone=True).outputs == ["media/x.png", "media/x-phone.png"]
+    assert media.Figure("media/x.png", with_variant, phone=True).outputs == \
+        ["media/x.png", "media/x-phone.png", "media/x-phone-3x.png"], "a plot's phone variant is two files"
+    assert media.Figure("media/x.svg", with_variant, phone=True).outputs == ["media/x.svg", "media/x-phone.svg"]

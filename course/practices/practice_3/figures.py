@@ -155,7 +155,8 @@ DESIGN = ["course/practices/practice_3/design.py", "course/parts.py", "course/dr
 SIM = [PACKAGE, "sw2sim/loader.py", "sw2sim/ros_control.py", "sw2sim/render.py", "course/plotting.py"]
 
 FIGURES = [
-    *drawing_figures(MEDIA, "base", part_drawing, design.base, DESIGN, "Drawing of the base"),
+    *drawing_figures(MEDIA, "base", part_drawing, design.base, DESIGN, "Drawing of the base",
+                      phone=True),
     *drawing_figures(MEDIA, "middle_arm", part_drawing, design.middle_arm, DESIGN, "Drawing of the middle arm",
                       phone=True),
     *drawing_figures(MEDIA, "end_arm", part_drawing, design.end_arm, DESIGN, "Drawing of the end arm",

@@ -1,6 +1,8 @@
 """Every figure's lettering is large enough where a page shows it: at least 10 px high on
-a laptop (1366 × 900), and at least 9 px on phones 360 and 390 px wide, measured on the
-picture as the browser lays it out.
+a laptop (1366 × 900), and on phones 360 and 390 px wide at least 11 px on the engineering
+drawings (course/drawing: dimensions and balloons are read one by one) and 9 px on the
+plots and the schematics of the exporter's windows, measured on the picture as the browser
+lays it out.
 
 - A drawing (SVG): its smallest font size, scaled by the width the page gives the picture
   over its viewBox's width. The pages show the views cropped close (course/drawing); the
@@ -27,6 +29,7 @@ LAPTOP = {"width": 1366, "height": 900}
 READABLE_PX = 10.0
 PHONES = [{"width": 360, "height": 780}, {"width": 390, "height": 844}]
 READABLE_ON_A_PHONE_PX = 9.0
+DRAWING_ON_A_PHONE_PX = 11.0   # course/phone.py DRAWING_MIN_TEXT_PX
 SVG = "{http://www.w3.org/2000/svg}"
 CSS_RULE = re.compile(r"([^{}]+)\{([^}]*)\}")
 
@@ -124,13 +127,19 @@ def test_figure_text_is_readable_at_the_page_width(browser_page, site):
     assert not small, "\n".join(small)
 
 
-def test_on_a_phone_every_figure_shows_text_at_least_9_px_high(phone, site):
-    """At 390 and 360 px every figure with lettering shows it at least 9 px high: the
-    plots' and the drawings' phone variants where the figure has one (all the plots, the
-    drawings wider than a phone's column, the schematics of the exporter's windows), the
-    figure itself where it needs none."""
+def is_drawing(site, figure) -> bool:
+    """Whether the figure is an engineering drawing's views: its whole sheet lies beside it."""
+    src = site.root / figure["src"].lstrip("/")
+    return src.suffix == ".svg" and src.with_name(f"{src.stem}-sheet.svg").is_file()
+
+
+def test_on_a_phone_every_figure_shows_text_at_least_9_px_high_and_drawings_11(phone, site):
+    """At 390 and 360 px every figure with lettering shows it at least 9 px high, and every
+    engineering drawing at least 11 px: the phone variants where the figure has one (all
+    the plots and the drawings, the schematics of the exporter's windows), the figure
+    itself where it needs none."""
     page = phone.page
-    measured, variants, small = 0, set(), []
+    measured, drawings, variants, small = 0, 0, set(), []
     try:
         for size in PHONES:
             page.set_viewport_size(size)
@@ -144,13 +153,15 @@ def test_on_a_phone_every_figure_shows_text_at_least_9_px_high(phone, site):
                     if figure["file"] != figure["src"]:
                         variants.add(figure["file"])
                     px = found[1]
-                    if px < READABLE_ON_A_PHONE_PX:
+                    drawing = is_drawing(site, figure)
+                    drawings += drawing
+                    if px < (DRAWING_ON_A_PHONE_PX if drawing else READABLE_ON_A_PHONE_PX):
                         small.append(f"{size['width']} px, {path}: {figure['file']} shown "
                                      f"{figure['shown']:.0f} px wide: smallest text {px:.1f} px")
     finally:
         page.set_viewport_size(PHONES[-1])
-    assert measured >= 2 * 35, measured
-    assert all("-phone." in file for file in variants), variants
+    assert measured >= 2 * 35 and drawings >= 2 * 17, (measured, drawings)
+    assert all(re.search(r"-phone(-3x)?\.", file) for file in variants), variants
     assert len(variants) >= 25, f"phone variants shown: {sorted(variants)}"
     assert not small, "\n".join(small)
 
