@@ -252,8 +252,10 @@ def _spawn_height(package: Package, choices: list[str]) -> float:
         mujoco.mj_kinematics(model, data)
         low = lowest_collision_point(model, data)
     except Exception as exc:  # noqa: BLE001  (any model MuJoCo refuses: spawn as given)
-        choices.append(f"The robot is spawned at z = 0: its lowest point could not be measured "
-                       f"({str(exc).splitlines()[0][:160]}); `sw2sim check` on the source says why.")
+        why = getattr(exc, "message", None) or str(exc)
+        choices.append("The robot is spawned at z = 0: its lowest point could not be measured, "
+                       f"as MuJoCo does not load the source ({why.splitlines()[0]}); "
+                       "`sw2sim check` on the source says how to fix it.")
         return 0.0
     if abs(low) <= 1e-6:
         return 0.0
