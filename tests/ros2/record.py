@@ -70,9 +70,21 @@ def main() -> int:
         node.create_subscription(message_type, topic,
                                  lambda m, topic=topic, value=value: command(topic, value(m)),
                                  100)
+    # The topics of the run and their types, as `ros2 topic list -t` would list them: read
+    # through the run, since discovery of a node started late can lag behind on a busy machine.
+    graph, listed = {}, 0.0
+
+    def list_topics():
+        for name, types in node.get_topic_names_and_types():
+            graph.setdefault(name, [])
+            graph[name] += [t for t in types if t not in graph[name]]
+
     deadline = time.monotonic() + WALL_TIMEOUT
     while time.monotonic() < deadline:
         rclpy.spin_once(node, timeout_sec=0.05)
+        if time.monotonic() - listed > 0.5:
+            list_topics()
+            listed = time.monotonic()
         if record["start"] == 0.0 and now() > 0:
             record["start"] = first_clock = now()
             for messages in record["topics"].values():
@@ -80,8 +92,8 @@ def main() -> int:
         if record["start"] and now() >= record["start"] + seconds:
             break
     done = bool(record["start"]) and now() >= record["start"] + seconds
-    # The topics of the run and their types, as `ros2 topic list -t` would list them.
-    record["graph"] = {name: types for name, types in node.get_topic_names_and_types()}
+    list_topics()
+    record["graph"] = graph
     print(json.dumps(record))
     node.destroy_node()
     rclpy.try_shutdown()
