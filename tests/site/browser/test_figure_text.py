@@ -166,6 +166,29 @@ def test_on_a_phone_every_figure_shows_text_at_least_9_px_high_and_drawings_11(p
     assert not small, "\n".join(small)
 
 
+def test_a_phone_fetches_the_plot_file_its_screen_needs(browser, site):
+    """A plot's phone variant is two files (course/plotting.py): a 360 px phone with 1 or 2
+    device pixels to the CSS pixel shows the 720 px one, with 3 the 1080 px one, each
+    sharp there (at least as many image pixels as device pixels across the column)."""
+    path = next(p for p in pages_with_figures(site)
+                if "-phone-3x.png" in (site.root / p.strip("/") / "index.html").read_text(encoding="utf-8"))
+    shown = {}
+    for density in (1, 2, 3):
+        context = browser.new_context(viewport=PHONES[0], device_scale_factor=density)
+        try:
+            page = context.new_page()
+            page.goto(site.url(path))
+            plots = [f for f in page.evaluate(FIGURES) if f["src"].endswith(".png") and "-phone" in f["file"]]
+            assert plots, f"{path}: no plot shows a phone variant"
+            shown[density] = {f["file"].rsplit("-phone", 1)[1] for f in plots}
+            for figure in plots:
+                width = Image.open(site.root / figure["file"].lstrip("/")).width
+                assert width >= density * figure["shown"], f"{figure['file']}: {width} px for {density} × {figure['shown']:.0f}"
+        finally:
+            context.close()
+    assert shown == {1: {".png"}, 2: {".png"}, 3: {"-3x.png"}}, shown
+
+
 def test_each_drawing_links_its_whole_sheet(site):
     """A drawing shows its views on the page; its caption links the whole sheet."""
     drawings = sorted(site.root.glob("media/practice-*/*-sheet.svg"))
