@@ -9,6 +9,7 @@ the title block, and `assembly_drawing_svg`.
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import dataclass
 
 import numpy as np
@@ -414,13 +415,7 @@ def _key_lines(mark: str, entry: str, width: float | None) -> list[tuple[float, 
         return [(0.0, lead + entry)]
     indent = text_width(lead, KEY_TEXT)
     lines, line = [], ""
-    words: list[str] = []
-    for word in entry.split(" "):   # "× 2" stays with the word before it
-        if words and (word == "×" or words[-1].endswith("×")):
-            words[-1] += " " + word
-        else:
-            words.append(word)
-    for word in words:
+    for word in re.split(r"(?<!×) (?!×)", entry):   # "× 2" stays with the word before it
         trial = f"{line} {word}".strip()
         if line and indent + text_width(trial, KEY_TEXT) > width:
             lines.append(line)

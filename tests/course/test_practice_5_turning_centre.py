@@ -48,7 +48,7 @@ def _drawn(monkeypatch, tmp_path) -> dict[bool, dict]:
     seen = {}
     save = plotting.save
 
-    def recording(fig, path, layout=plotting.DESKTOP):
+    def recording(fig, path, layout=plotting.DESKTOP, **files):
         on_phone = layout is plotting.PHONE
         fig.canvas.draw()
         renderer = fig.canvas.get_renderer()
@@ -57,7 +57,7 @@ def _drawn(monkeypatch, tmp_path) -> dict[bool, dict]:
                  if not isinstance(t, Annotation)]
         lines = [ax.transData.transform(line.get_xydata()) for line in ax.lines]
         arrows = [ax.transData.transform([a.xy, a.xyann]) for a in ax.texts if isinstance(a, Annotation)]
-        save(fig, path, layout)
+        save(fig, path, layout, **files)
         seen[on_phone] = dict(texts=texts, lines=lines, arrows=arrows, width=fig.bbox.width,
                               height=fig.bbox.height)
     monkeypatch.setattr(plotting, "save", recording)
