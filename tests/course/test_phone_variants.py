@@ -101,6 +101,48 @@ def test_the_chassis_narrow_views_keep_every_dimension_with_no_text_on_another()
     assert overlapping_texts(small) == []
 
 
+def text_boxes(svg: str) -> list[tuple[str, tuple[float, float, float, float]]]:
+    """Each text of a drawing with its box (x0, y0, x1, y1; mm)."""
+    from course.drawing.svg import Text
+    out = []
+    for attributes, body in re.findall(r"<text ([^>]*)>([^<]*)</text>", svg):
+        a = dict(re.findall(r'([\w-]+)="([^"]*)"', attributes))
+        turned = re.match(r"rotate\(([-\d.]+)", a.get("transform", ""))
+        corners = Text(float(a["x"]), float(a["y"]), body, float(a["font-size"]), a.get("text-anchor", "start"),
+                       float(turned[1]) if turned else 0.0).points()
+        xs, ys = [x for x, _ in corners], [y for _, y in corners]
+        out.append((body, (min(xs), min(ys), max(xs), max(ys))))
+    return out
+
+
+def test_every_phone_drawing_keeps_its_labels_apart_and_clear_of_its_edge():
+    """Each drawing's phone variant in media/ (course/drawing) reads 11 px in a 360 px
+    phone's column and shows what the page's drawing shows: a part's every text; an
+    assembly's balloons and key, the joints' names in the key under a letter; no text on
+    another, and none within 2 mm of the edge."""
+    from course.practices import ROOT
+    checked = 0
+    for small in sorted((ROOT / "media").rglob("*-phone.svg")):
+        views = small.with_name(small.name.replace(phone.SUFFIX, ""))
+        if not views.with_name(f"{views.stem}-sheet.svg").is_file():
+            continue   # a schematic of the exporter's windows, not a drawing
+        checked += 1
+        svg, desktop = small.read_text(), views.read_text()
+        assert not narrow.too_wide(svg), small.name
+        shown, page = [t for t, _ in text_boxes(svg)], [t for t, _ in text_boxes(desktop)]
+        if views.stem == "assembly":
+            words = " ".join(shown).split()
+            assert all(word in words for text in page for word in text.split()), small.name
+        else:
+            assert sorted(shown) == sorted(page), small.name
+        assert overlapping_texts(svg) == [], small.name
+        x, y, w, h = (float(v) for v in re.search(r'viewBox="([^"]+)"', svg)[1].split())
+        near = [t for t, (x0, y0, x1, y1) in text_boxes(svg)
+                if min(x0 - x, y0 - y, x + w - x1, y + h - y1) < 2.0]
+        assert near == [], f"{small.name}: at the edge: {near}"
+    assert checked == 17
+
+
 def test_an_assembly_key_too_wide_for_a_phone_breaks_between_words():
     from course.practices.practice_3 import design as practice_3
     robot = practice_3.robot()
