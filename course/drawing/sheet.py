@@ -267,17 +267,19 @@ def _stacked(views: dict) -> list:
 def part_views_narrow_svg(part: Part, width: float) -> str:
     """The part's views for a narrow column (a phone's: course/drawing/narrow.py): one above
     the other (`_stacked`), each named, with its dimensions, at the sheet's scale or, if that
-    makes them wider than `width` mm, the largest that does not. The lettering is as large as
-    on the sheet."""
+    makes them wider than `width` mm, the largest that does not: the front and top views,
+    which share their columns, at one scale, the side view, centred under them, at its own
+    (never smaller), so that a part's short side is not drawn as small as its long top. The
+    lettering is as large as on the sheet."""
     check_dimensions(part)
     solid = Solid(part.features)
-    _, k, _, _ = _sheet_layout(part, solid)
+    _, sheet_k, _, _ = _sheet_layout(part, solid)
 
-    def wide(k: float) -> float:
-        x0, _, x1, _ = bbox([p for _, prims in _stacked(
-            {v: _part_view(part, solid, v, k, None) for v in VIEWS}) for p in prims])
+    def wide(views: tuple[str, ...], k: float) -> float:
+        x0, _, x1, _ = bbox([p for v in views for p in _part_view(part, solid, v, k, None)])
         return x1 - x0
 
-    k = largest_fitting(wide, k, width)
-    layers = _stacked({v: _part_view(part, solid, v, k, trace_view(solid, v, k)) for v in VIEWS})
+    k = largest_fitting(lambda k: wide(("front", "top"), k), sheet_k, width)
+    scales = {"front": k, "top": k, "side": max(k, largest_fitting(lambda k: wide(("side",), k), sheet_k, width))}
+    layers = _stacked({v: _part_view(part, solid, v, scales[v], trace_view(solid, v, scales[v])) for v in VIEWS})
     return document(layers, f"{part.title or part.name} ({part.name}.SLDPRT)", views_box(layers))
