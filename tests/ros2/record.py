@@ -1,13 +1,15 @@
 """Record, on simulated time, a robot's /joint_states and the commands nodes publish, and
 print them as JSON once the clock is SECONDS past the trigger:
 
-    python record.py SECONDS TRIGGER TOPIC=KIND ...
+    python record.py SECONDS TRIGGER TOPIC=KIND ... [expect:TOPIC ...]
 
 KIND is `trajectory` (trajectory_msgs/msg/JointTrajectory: its last point's positions),
 `array` (std_msgs/msg/Float64MultiArray) or `float` (std_msgs/msg/Float64). TRIGGER is
 one of the TOPICs (its first message), or `motion:JOINT`: the first joint state in which
 JOINT moves (a node's one message may come before this recorder has found its publisher;
-the motion it causes cannot).
+the motion it causes cannot). An `expect:TOPIC` (a topic the page's lines name) keeps the
+recorder listing the run's topics after the recording, until each is there or EXPECT_WAIT
+seconds have passed: a node started last may be discovered late on a busy machine.
 
 {"start": t, "states": [[t, {joint: position}], ...], "speeds": [[t, {joint: velocity}], ...],
  "topics": {topic: [[t, value], ...]}, "graph": {topic: [type, ...]}}
@@ -28,6 +30,7 @@ from std_msgs.msg import Float64, Float64MultiArray
 from trajectory_msgs.msg import JointTrajectory
 
 WALL_TIMEOUT = 60.0
+EXPECT_WAIT = 10.0   # s of wall time
 MOVING = 1e-3   # rad/s or m/s: faster than this, a joint moves
 KINDS = {
     "trajectory": (JointTrajectory,
@@ -40,7 +43,8 @@ KINDS = {
 
 def main() -> int:
     seconds, trigger = float(sys.argv[1]), sys.argv[2]
-    kinds = dict(arg.split("=", 1) for arg in sys.argv[3:])
+    kinds = dict(arg.split("=", 1) for arg in sys.argv[3:] if "=" in arg)
+    expected = {arg.removeprefix("expect:") for arg in sys.argv[3:] if arg.startswith("expect:")}
     rclpy.init()
     node = Node("recorder", parameter_overrides=[Parameter("use_sim_time", value=True)])
     now = lambda: node.get_clock().now().nanoseconds / 1e9  # noqa: E731
@@ -93,6 +97,10 @@ def main() -> int:
             break
     done = bool(record["start"]) and now() >= record["start"] + seconds
     list_topics()
+    waited = time.monotonic() + EXPECT_WAIT
+    while expected - set(graph) and time.monotonic() < waited:
+        rclpy.spin_once(node, timeout_sec=0.1)
+        list_topics()
     record["graph"] = graph
     print(json.dumps(record))
     node.destroy_node()

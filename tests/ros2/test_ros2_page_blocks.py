@@ -21,7 +21,7 @@ from course.snippets import find_pages, parse_page
 from course.snippets.ros2 import Ros2BlockError, Session
 import ctrl_c
 from jazzy_commands import (action_problems, action_types, field_tables, jazzy_commands,
-                            topic_problems, topic_types)
+                            topic_line, topic_problems, topic_types)
 from repository import ROOT
 import ros2_domains
 from ros2_environment import PYTHON, missing
@@ -307,9 +307,11 @@ def test_page_ros2_blocks(path, tmp_path, record_property, request):
                  home=home) as session:
         try:
             session.prepare()
+            named = {topic_line(c)[1] for c in jazzy_commands(page)} - {None}
             recorder = subprocess.Popen(
                 [str(PYTHON), str(RECORD), f"{seconds:g}", trigger,
-                 *(f"{t}={k}" for t, k in topics.items())],
+                 *(f"{t}={k}" for t, k in topics.items()),
+                 *(f"expect:{t}" for t in sorted(named))],
                 env=session.env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                 start_new_session=True)
             # The recorder listens before any node starts, as a reader's plot would.
