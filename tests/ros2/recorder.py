@@ -25,6 +25,7 @@ from std_msgs.msg import Float64MultiArray, String
 from tf2_msgs.msg import TFMessage
 from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
 
+RESEND = 0.2   # s of wall time between a reference's sends
 WALL_TIMEOUT = 40.0
 
 
@@ -100,13 +101,16 @@ def main() -> int:
     for controller, values in args.commands:
         publisher = node.create_publisher(Float64MultiArray, f"/{controller}/commands", 10)
         senders.append((publisher, Float64MultiArray(data=[float(v) for v in values.split(",")])))
+    references = []
     for controller, joint, value in args.reference:
         from control_msgs.msg import MultiDOFCommand
         publisher = node.create_publisher(MultiDOFCommand, f"/{controller}/reference", 10)
-        senders.append((publisher, MultiDOFCommand(dof_names=[joint], values=[float(value)],
-                                                   values_dot=[0.0])))
+        references.append((publisher, MultiDOFCommand(dof_names=[joint], values=[float(value)],
+                                                       values_dot=[0.0])))
+    senders += references
     deadline = time.monotonic() + WALL_TIMEOUT
     sent_at = base = None
+    resent = time.monotonic()
     while time.monotonic() < deadline:
         rclpy.spin_once(node, timeout_sec=0.01)
         if sent_at is None and out["states"] and all(
@@ -115,6 +119,13 @@ def main() -> int:
                 publisher.publish(message)
             sent_at = out["states"][-1][0]
             out["sent_at"] = sent_at
+        elif sent_at is not None and time.monotonic() - resent > RESEND:
+            # pid_controller takes its reference best effort: a message sent before the
+            # controller's side has matched this publisher is lost, so it goes again, as
+            # a node that holds a set point sends it (the same value: no other effect)
+            for publisher, message in references:
+                publisher.publish(message)
+            resent = time.monotonic()
         base = sent_at if senders else (out["states"][0][0] if out["states"] else None)
         if base is not None and out["clock"] and out["clock"][-1] >= base + args.until \
                 and out["description"] is not None:   # latched, it may come after the states
