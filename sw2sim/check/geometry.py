@@ -216,9 +216,10 @@ def _as_solid(mesh: Mesh) -> manifold3d.Manifold | None:
     return solid
 
 
-def solid_of(ctx, link):
-    """(kind, closed, volume, inertia tensor about its centroid at density 1, link axes) of
-    the link's collision geometry, else its visual; None when neither can be measured."""
+def solid_triangles(ctx, link):
+    """(kind, closed, triangles in link axes) of the solid the link's collision geometry
+    makes, else its visual's: the meshes themselves when all are closed, else their convex
+    hull; None when neither can be measured."""
     for kind in ("collision", "visual"):
         pieces = link_geometry(ctx, link, kind)
         if pieces:
@@ -227,12 +228,18 @@ def solid_of(ctx, link):
         return None
     closed = all(enclosed_volume(p) is not None for p in pieces)
     if closed:
-        triangles = np.vstack([p.mesh.triangles for p in pieces])
-    else:
-        shape = hull(np.vstack([p.mesh.vertices for p in pieces]))
-        if shape is None:
-            return None
-        triangles = shape.triangles
+        return kind, True, np.vstack([p.mesh.triangles for p in pieces])
+    shape = hull(np.vstack([p.mesh.vertices for p in pieces]))
+    return None if shape is None else (kind, False, shape.triangles)
+
+
+def solid_of(ctx, link):
+    """(kind, closed, volume, inertia tensor about its centroid at density 1, link axes) of
+    the link's solid (`solid_triangles`); None when it cannot be measured."""
+    solid = solid_triangles(ctx, link)
+    if solid is None:
+        return None
+    kind, closed, triangles = solid
     volume, _, tensor = solid_properties(triangles)
     if not volume > 0 or not np.all(np.isfinite(tensor)):
         return None

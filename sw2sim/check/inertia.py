@@ -11,17 +11,16 @@ no material has) is a warning.
 
 from __future__ import annotations
 
-from pathlib import Path
 
 import numpy as np
 
 from ..xmlsafe import source_line
 from .findings import ERROR, WARNING, rule
 from .geometry import (Inertial, Tree, enclosed_volume, inertial_of, link_geometry,
-                       model_size, origin_matrix, solid_of)
+                       model_size, origin_matrix, solid_of, solid_triangles)
 from .density_command import by_density
 from .repairs import balanced, repair, write_inertial, write_tensor
-from .trimeshes import corners, hull, hull_planes, hull_volume
+from .trimeshes import corners, hull_planes, hull_volume
 
 # MuJoCo's smallest mass or principal moment of inertia (mjMINVAL).
 MJMINVAL = 1e-15
@@ -414,21 +413,11 @@ def _recompute(ctx, link):
     density = ctx.options.density
     if density is None:
         return None
-    for kind in ("collision", "visual"):
-        pieces = link_geometry(ctx, link, kind)
-        if pieces:
-            break
-    else:
+    solid = solid_triangles(ctx, link)
+    if solid is None:
         return None
+    kind, closed, triangles = solid
     import trimesh   # only with --density: the check itself does without it
-    closed = all(enclosed_volume(p) is not None for p in pieces)
-    if closed:
-        triangles = np.vstack([p.mesh.triangles for p in pieces])
-    else:
-        shape = hull(np.vstack([p.mesh.vertices for p in pieces]))
-        if shape is None:
-            return None
-        triangles = shape.triangles
     props = trimesh.triangles.mass_properties(triangles, density=density)
     if not props.mass > 0 or not np.all(np.isfinite(props.inertia)):
         return None
