@@ -11,7 +11,6 @@ no material has) is a warning.
 
 from __future__ import annotations
 
-
 import numpy as np
 
 from ..xmlsafe import source_line

@@ -1,8 +1,9 @@
 """An independent ROS 2 node (rclpy only, no sw2sim): it records what the stand-in serves,
 sends the commands it is given, and prints one JSON object once the simulated clock
-is UNTIL seconds past the moment it sent its commands (without commands: past the first
-joint state it received) and /robot_description has arrived, or after WALL_TIMEOUT seconds
-of wall time.
+is UNTIL seconds past the moment its commands took effect (every joint a trajectory or
+reference names has moved; without those, when it sent its commands; without commands,
+past the first joint state it received) and /robot_description has arrived, or after
+WALL_TIMEOUT seconds of wall time.
 
     python recorder.py UNTIL [--trajectory CONTROLLER JOINT POSITION SECONDS] ...
                              [--commands CONTROLLER V1,V2,...] [--reference CONTROLLER JOINT VALUE]
@@ -25,6 +26,7 @@ from std_msgs.msg import Float64MultiArray, String
 from tf2_msgs.msg import TFMessage
 from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
 
+MOVING = 1e-3   # rad/s or m/s: faster than this, a joint moves
 RESEND = 0.2   # s of wall time between a reference's sends
 WALL_TIMEOUT = 40.0
 
@@ -40,6 +42,8 @@ def main() -> int:
     parser.add_argument("--commands", nargs=2, action="append", default=[])
     parser.add_argument("--reference", nargs=3, action="append", default=[])
     parser.add_argument("--state", nargs=2, action="append", default=[])
+    parser.add_argument("--moves", action="append", default=[],
+                        help="a joint a --commands message moves (its controller's)")
     args = parser.parse_args()
     rclpy.init()
     node = rclpy.create_node("recorder")
@@ -108,8 +112,24 @@ def main() -> int:
         references.append((publisher, MultiDOFCommand(dof_names=[joint], values=[float(value)],
                                                        values_dot=[0.0])))
     senders += references
+    # the joints the commands move: UNTIL counts from when each has started to move, as the
+    # commands' effect, not their sending, is what is timed: a message takes some wall time
+    # to arrive, which a stand-in running faster than real time (--realtime 0) turns into
+    # seconds of simulated time (a command sent at 8.46 s was not applied by 10.96 s)
+    # (a joint moved toward its target by a twentieth of the way, or a --moves joint turning:
+    # a joint merely shaken by another's start does not count)
+    targets = {j: float(p) for _, joint, position, _ in args.trajectory
+               for j, p in zip(joint.split(","), position.split(","))}
+    targets |= {joint: float(value) for _, joint, value in args.reference}
+
+    def moved(joint, since):
+        if joint not in targets:
+            return any(abs(state[2].get(joint, 0.0)) > MOVING for state in since)
+        start, goal = since[0][1].get(joint, 0.0), targets[joint]
+        return any(abs(state[1].get(joint, start) - start) > 0.05 * abs(goal - start)
+                   for state in since)
     deadline = time.monotonic() + WALL_TIMEOUT
-    sent_at = base = None
+    sent_at = base = moved_at = None
     resent = time.monotonic()
     while time.monotonic() < deadline:
         rclpy.spin_once(node, timeout_sec=0.01)
@@ -126,7 +146,12 @@ def main() -> int:
             for publisher, message in references:
                 publisher.publish(message)
             resent = time.monotonic()
-        base = sent_at if senders else (out["states"][0][0] if out["states"] else None)
+        if sent_at is not None and moved_at is None:
+            since = [state for state in out["states"] if state[0] >= sent_at]
+            if not targets.keys() | set(args.moves) or since and all(
+                    moved(j, since) for j in targets.keys() | set(args.moves)):
+                moved_at = out["moved_at"] = since[-1][0] if since else sent_at
+        base = moved_at if senders else (out["states"][0][0] if out["states"] else None)
         if base is not None and out["clock"] and out["clock"][-1] >= base + args.until \
                 and out["description"] is not None:   # latched, it may come after the states
             break

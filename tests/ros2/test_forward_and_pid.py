@@ -39,7 +39,7 @@ def test_velocity_commands_and_a_pid_reference(ros2, ported_example_3, tmp_path)
                                            '<command_interface name="velocity">', 1)
     urdf.write_text(text)
     ros2.standin(package)
-    out = ros2.record("2.5", "--commands", "end_velocity", "0.2",
+    out = ros2.record("2.5", "--commands", "end_velocity", "0.2", "--moves", "end_arm_joint",
                       "--reference", "middle_pid", "middle_arm_joint", "0.4",
                       "--state", "middle_pid", "pid")
     # The broadcaster's 50 a second, on the 20 ms grid of simulated time its controller
@@ -49,7 +49,7 @@ def test_velocity_commands_and_a_pid_reference(ros2, ported_example_3, tmp_path)
     assert np.median(np.diff(stamps)) == pytest.approx(0.02, abs=1e-6)
     assert np.all(np.abs(stamps * 50 - np.round(stamps * 50)) / 50 <= 0.002 + 1e-9), stamps[:8]
     t, q, v = out["states"][-1]
-    assert abs(v["end_arm_joint"] - 0.2) < 0.01
+    assert abs(v["end_arm_joint"] - 0.2) < 0.01, (out.get("sent_at"), ros2.log("standin")[-3000:])
     earlier = [s for s in out["states"] if s[0] <= t - 0.5][-1]   # moving at 0.2 rad/s
     assert abs((q["end_arm_joint"] - earlier[1]["end_arm_joint"]) / (t - earlier[0]) - 0.2) < 0.01
     assert abs(q["middle_arm_joint"] - 0.4) < 0.01
