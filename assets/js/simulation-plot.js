@@ -8,6 +8,21 @@ const WINDOW = 10; // s shown
 const COLORS = ["#d62728", "#1f77b4", "#ff7f0e", "#2ca02c", "#9467bd", "#8c564b"];
 const MARGIN = { left: 52, right: 20, top: 8, bottom: 26 };   // right: room for the last time label
 
+
+// The canvas sized to its box at the screen's pixel ratio, cleared, with a context that
+// draws in CSS pixels: { g, width, height }.
+function cleared(canvas) {
+  const width = canvas.clientWidth || 600;
+  const height = canvas.clientHeight || 200;
+  const ratio = window.devicePixelRatio || 1;
+  if (canvas.width !== Math.round(width * ratio)) canvas.width = Math.round(width * ratio);
+  if (canvas.height !== Math.round(height * ratio)) canvas.height = Math.round(height * ratio);
+  const g = canvas.getContext("2d");
+  g.setTransform(ratio, 0, 0, ratio, 0, 0);
+  g.clearRect(0, 0, width, height);
+  return { g, width, height };
+}
+
 export class TracePlot {
   // series: [{label, column, step}], `column` in the worker's trace rows (0 is time).
   constructor(canvas, series, unit) {
@@ -28,14 +43,7 @@ export class TracePlot {
 
   draw() {
     const { canvas, rows } = this;
-    const width = canvas.clientWidth || 600;
-    const height = canvas.clientHeight || 200;
-    const ratio = window.devicePixelRatio || 1;
-    if (canvas.width !== Math.round(width * ratio)) canvas.width = Math.round(width * ratio);
-    if (canvas.height !== Math.round(height * ratio)) canvas.height = Math.round(height * ratio);
-    const g = canvas.getContext("2d");
-    g.setTransform(ratio, 0, 0, ratio, 0, 0);
-    g.clearRect(0, 0, width, height);
+    const { g, width, height } = cleared(canvas);
     const t1 = Math.max(WINDOW, rows.length ? rows[rows.length - 1][0] : 0);
     const t0 = t1 - WINDOW;
     let low = Infinity;
@@ -120,14 +128,7 @@ export class PathPlot {
 
   draw() {
     const { canvas, rows, circle } = this;
-    const width = canvas.clientWidth || 600;
-    const height = canvas.clientHeight || 200;
-    const ratio = window.devicePixelRatio || 1;
-    if (canvas.width !== Math.round(width * ratio)) canvas.width = Math.round(width * ratio);
-    if (canvas.height !== Math.round(height * ratio)) canvas.height = Math.round(height * ratio);
-    const g = canvas.getContext("2d");
-    g.setTransform(ratio, 0, 0, ratio, 0, 0);
-    g.clearRect(0, 0, width, height);
+    const { g, width, height } = cleared(canvas);
     const xs = rows.map((row) => row[1]);
     const ys = rows.map((row) => row[2]);
     if (circle && Number.isFinite(circle.radius)) {
