@@ -27,7 +27,7 @@ from tf2_msgs.msg import TFMessage
 from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
 
 MOVING = 1e-3   # rad/s or m/s: faster than this, a joint moves
-RESEND = 0.2   # s of wall time between a reference's sends
+RESEND = 0.05   # s of wall time between a command's or set point's sends
 WALL_TIMEOUT = 40.0
 
 
@@ -42,8 +42,9 @@ def main() -> int:
     parser.add_argument("--commands", nargs=2, action="append", default=[])
     parser.add_argument("--reference", nargs=3, action="append", default=[])
     parser.add_argument("--state", nargs=2, action="append", default=[])
-    parser.add_argument("--moves", action="append", default=[],
-                        help="a joint a --commands message moves (its controller's)")
+    parser.add_argument("--moves", nargs=2, action="append", default=[],
+                        metavar=("JOINT", "VELOCITY"),
+                        help="a joint a --commands message turns, and at what velocity")
     args = parser.parse_args()
     rclpy.init()
     node = rclpy.create_node("recorder")
@@ -102,9 +103,12 @@ def main() -> int:
         point.time_from_start.sec, point.time_from_start.nanosec = int(whole), int(part * 1e9)
         senders.append((publisher, JointTrajectory(joint_names=joint.split(","),
                                                    points=[point])))
+    repeated = []   # sent again every RESEND: the same command or set point has no other effect
     for controller, values in args.commands:
         publisher = node.create_publisher(Float64MultiArray, f"/{controller}/commands", 10)
-        senders.append((publisher, Float64MultiArray(data=[float(v) for v in values.split(",")])))
+        repeated.append((publisher,
+                         Float64MultiArray(data=[float(v) for v in values.split(",")])))
+    senders += repeated
     references = []
     for controller, joint, value in args.reference:
         from control_msgs.msg import MultiDOFCommand
@@ -112,19 +116,24 @@ def main() -> int:
         references.append((publisher, MultiDOFCommand(dof_names=[joint], values=[float(value)],
                                                        values_dot=[0.0])))
     senders += references
+    repeated += references
     # the joints the commands move: UNTIL counts from when each has started to move, as the
     # commands' effect, not their sending, is what is timed: a message takes some wall time
     # to arrive, which a stand-in running faster than real time (--realtime 0) turns into
     # seconds of simulated time (a command sent at 8.46 s was not applied by 10.96 s)
-    # (a joint moved toward its target by a twentieth of the way, or a --moves joint turning:
-    # a joint merely shaken by another's start does not count)
+    # (a joint moved toward its target by a twentieth of the way, or a --moves joint turning
+    # at its velocity: a joint merely shaken by another's start does not count)
     targets = {j: float(p) for _, joint, position, _ in args.trajectory
                for j, p in zip(joint.split(","), position.split(","))}
     targets |= {joint: float(value) for _, joint, value in args.reference}
 
+    turning = {joint: float(v) for joint, v in args.moves}
+
     def moved(joint, since):
-        if joint not in targets:
-            return any(abs(state[2].get(joint, 0.0)) > MOVING for state in since)
+        if joint in turning:   # at the commanded velocity, not merely shaken
+            goal = turning[joint]
+            return any(abs(state[2].get(joint, 0.0) - goal) <= 0.1 * abs(goal)
+                       for state in since)
         start, goal = since[0][1].get(joint, 0.0), targets[joint]
         return any(abs(state[1].get(joint, start) - start) > 0.05 * abs(goal - start)
                    for state in since)
@@ -142,14 +151,16 @@ def main() -> int:
         elif sent_at is not None and time.monotonic() - resent > RESEND:
             # pid_controller takes its reference best effort: a message sent before the
             # controller's side has matched this publisher is lost, so it goes again, as
-            # a node that holds a set point sends it (the same value: no other effect)
-            for publisher, message in references:
+            # a node that holds a set point sends it; a command too, which a reliable
+            # writer would otherwise repeat only at its next heartbeat, seconds of
+            # simulated time later at --realtime 0
+            for publisher, message in repeated:
                 publisher.publish(message)
             resent = time.monotonic()
         if sent_at is not None and moved_at is None:
             since = [state for state in out["states"] if state[0] >= sent_at]
-            if not targets.keys() | set(args.moves) or since and all(
-                    moved(j, since) for j in targets.keys() | set(args.moves)):
+            if not targets.keys() | turning.keys() or since and all(
+                    moved(j, since) for j in targets.keys() | turning.keys()):
                 moved_at = out["moved_at"] = since[-1][0] if since else sent_at
         base = moved_at if senders else (out["states"][0][0] if out["states"] else None)
         if base is not None and out["clock"] and out["clock"][-1] >= base + args.until \

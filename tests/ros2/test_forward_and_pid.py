@@ -38,8 +38,11 @@ def test_velocity_commands_and_a_pid_reference(ros2, ported_example_3, tmp_path)
     text = text[:end] + text[end:].replace('<command_interface name="effort">',
                                            '<command_interface name="velocity">', 1)
     urdf.write_text(text)
-    ros2.standin(package)
-    out = ros2.record("2.5", "--commands", "end_velocity", "0.2", "--moves", "end_arm_joint",
+    # at real time: the two commands take effect within a few milliseconds of each other,
+    # where as fast as it goes the simulation runs on for seconds between two deliveries
+    # (the end arm reached its limit before the middle arm's set point arrived)
+    ros2.standin(package, "--realtime", "1")
+    out = ros2.record("2.5", "--commands", "end_velocity", "0.2", "--moves", "end_arm_joint", "0.2",
                       "--reference", "middle_pid", "middle_arm_joint", "0.4",
                       "--state", "middle_pid", "pid")
     # The broadcaster's 50 a second, on the 20 ms grid of simulated time its controller
