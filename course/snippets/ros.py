@@ -64,9 +64,8 @@ from pathlib import Path
 
 from . import shell
 from .parse import Block, Page
-from .terminal import (DEBIAN_PACKAGES, LOGIN_PATH, SETUP_PAGE, WINDOWS,  # noqa: F401
-                       Command, RosBlockError, Running, Terminal, commands, package_of,
-                       terminal_setup)
+from .terminal import (DEBIAN_PACKAGES, LOGIN_PATH, WINDOWS, Command, RosBlockError, Running,
+                       Terminal, commands, package_of, terminal_setup)
 
 COMMAND_TIMEOUT = 30.0   # s for a command that ends, or for what it names to exist
 SETTLE_TIMEOUT = 30.0    # s for a launch to come up

@@ -7,7 +7,7 @@ from __future__ import annotations
 import shlex
 
 from course.snippets import find_pages, parse_page
-from course.snippets.ros import commands
+from course.snippets.terminal import commands
 from repository import ROOT
 
 

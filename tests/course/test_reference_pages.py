@@ -230,7 +230,7 @@ def test_practice_ros2_pages_show_the_ports_controllers(tmp_path):
     """A practice's ROS 2 page that shows config/controllers.yaml shows what its `sw2sim
     port` line writes: the whole file (its comments aside), or with "(part)" some of its
     lines, as they are."""
-    from course.snippets.ros import commands
+    from course.snippets.terminal import commands
     from sw2sim.port import port
     shown = 0
     for path in sorted((ROOT / "_pages").glob("practice-*/*-ros2.md")):

@@ -10,7 +10,7 @@ import time
 
 import pytest
 
-from course.snippets.ros import LOGIN_PATH
+from course.snippets.terminal import LOGIN_PATH
 from repository import ROOT
 from sw2sim.ros.terminal import variables
 

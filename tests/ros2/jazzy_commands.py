@@ -19,7 +19,7 @@ from pathlib import Path
 import yaml
 
 from course.snippets.parse import Page
-from course.snippets.ros import Command, commands
+from course.snippets.terminal import Command, commands
 
 # Jazzy tools the pages name that are no package of the course's.
 OTHER_PACKAGES = {"rqt_joint_trajectory_controller"}

@@ -11,7 +11,7 @@ import pytest
 
 from course.snippets import find_pages, parse_page
 from course.snippets.ros2 import node_blocks, ported_source
-from course.snippets.ros import commands
+from course.snippets.terminal import commands
 from jazzy_commands import jazzy_commands, name_problems
 from repository import ROOT
 from sw2sim.port import port

@@ -12,7 +12,7 @@ import subprocess
 
 from course.snippets import find_pages, parse_page
 from course.snippets.parse import Block
-from course.snippets.ros import commands
+from course.snippets.terminal import commands
 from repository import ROOT
 
 # Only plain words are handed to bash: nothing it would run or redirect. A variable
