@@ -192,6 +192,11 @@ class BrowserPage:
         self.page = page
         self.site = site
         self._visit = Visit("")
+        # A request belongs to the document that made it: one the last page started just
+        # before the next visit (an image a viewport change asked for) and that the
+        # navigation then aborted is not the new page's failure.
+        self._document_visit = self._visit
+        self._owner: dict = {}
         self._pending: set = set()
         page.on("console", self._on_console)
         page.on("pageerror", lambda error: self._visit.page_errors.append(str(error)))
@@ -234,6 +239,9 @@ class BrowserPage:
             self._visit.console_errors.append(text)
 
     def _on_request(self, request) -> None:
+        if request.is_navigation_request() and request.frame == self.page.main_frame:
+            self._document_visit = self._visit
+        self._owner[request] = self._document_visit
         if urlsplit(request.url).scheme in ("http", "https", "ws", "wss"):
             self._pending.add(request)
             if not self.site.is_local(request.url):
@@ -241,11 +249,13 @@ class BrowserPage:
 
     def _on_request_finished(self, request) -> None:
         self._pending.discard(request)
+        self._owner.pop(request, None)
 
     def _on_request_failed(self, request) -> None:
         self._pending.discard(request)
+        owner = self._owner.pop(request, self._visit)
         if self.site.is_local(request.url):
-            self._visit.failed_requests.append(f"{request.url} ({request.failure})")
+            owner.failed_requests.append(f"{request.url} ({request.failure})")
 
     def _on_response(self, response) -> None:
         if not self.site.is_local(response.url) or self.site.is_test_tool(response.url):
