@@ -113,7 +113,7 @@ def stl_bytes(path: Path) -> bytes:
         else:
             if not len(faces):
                 raise Unconvertible("it holds no triangles")
-            return _binary_stl(vertices[faces])
+            return binary_stl(vertices[faces])
     try:
         import collada  # noqa: F401  (trimesh reads COLLADA through pycollada)
     except ImportError:
@@ -137,7 +137,7 @@ def stl_bytes(path: Path) -> bytes:
 _NO_AREA = 1e-13
 
 
-def _binary_stl(triangles) -> bytes:
+def binary_stl(triangles) -> bytes:
     """Triangles (an n x 3 x 3 numpy array) as binary STL, with trimesh's arithmetic."""
     import numpy as np   # not at import: mesh_formats is imported where numpy is not needed
     record = np.dtype([("normal", "<f4", (3,)), ("corners", "<f4", (3, 3)),

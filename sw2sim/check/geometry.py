@@ -194,7 +194,7 @@ def closed_solid(piece: Piece, pose: np.ndarray | None = None) -> manifold3d.Man
     if enclosed_volume(piece) is None:
         return None
     if piece.local not in _solids:
-        _solids[piece.local] = _as_solid(piece.local) or False
+        _solids[piece.local] = as_solid(piece.local) or False
     solid = _solids[piece.local]
     if not solid:
         return None
@@ -202,7 +202,7 @@ def closed_solid(piece: Piece, pose: np.ndarray | None = None) -> manifold3d.Man
     return solid.transform(place[:3, :4])
 
 
-def _as_solid(mesh: Mesh) -> manifold3d.Manifold | None:
+def as_solid(mesh: Mesh) -> manifold3d.Manifold | None:
     """The mesh as a manifold3d solid when it is closed, without self-contradicting edges,
     and outward-facing (positive volume); None for an open, inverted or broken mesh."""
     try:

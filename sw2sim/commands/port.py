@@ -17,6 +17,9 @@ into the folder OUT (the package's folder: put it in a workspace's src/):
                            its joints and wheel_velocity_controller (velocity) for its
                            wheels, unless --no-controllers
   launch/display.launch.py, launch/gazebo.launch.py   RViz; Gazebo Sim with the controllers
+  meshes/                  copied; a <collision> mesh over 10,000 triangles gets a copy in
+                           meshes/simplified/ (no surface moved by more than 0.5 % of the
+                           part's size), unless --keep-collision-meshes
   README.md                how to build and run it, and every choice made for you
 Each choice is also printed. The source is never changed. OUT must be new, empty, or
 an earlier output of sw2sim port: porting again replaces only what the port writes and
@@ -59,6 +62,10 @@ def add_arguments(parser) -> None:
     parser.add_argument("--license", metavar="LICENCE",
                         help="package.xml's licence, such as Apache-2.0 or BSD-3-Clause "
                              "(default: the source's, else TODO)")
+    parser.add_argument("--keep-collision-meshes", dest="simplify_collisions",
+                        action="store_false",
+                        help="use each <collision>'s mesh whole (by default one over 10,000 "
+                             "triangles gets a simplified copy in meshes/simplified/)")
     urdf_choice(parser)
 
 
@@ -69,7 +76,8 @@ def run(args) -> int:
         package = find_package(args.path, urdf=args.urdf)
         report = port(package, args.output, name=args.name, effort_joints=args.effort_joints,
                       default_controllers=args.default_controllers,
-                      maintainer=args.maintainer, license=args.license)
+                      maintainer=args.maintainer, license=args.license,
+                      simplify_collisions=args.simplify_collisions)
     except (LoadError, PortError) as exc:
         say(f"sw2sim port: {exc}")
         return EXIT_UNUSABLE

@@ -9,7 +9,8 @@
                              wheel velocity controller (defaults.py)
     launch/*.launch.py       RViz, and Gazebo Sim with the controllers (launch.py)
     rviz/<file>.rviz         the package's RViz configuration, for RViz 2 (rviz.py)
-    meshes/                  copied as they are
+    meshes/                  copied as they are; meshes/simplified/ holds a lighter copy of
+                             each heavy mesh that a <collision> names (collision_meshes.py)
     README.md                how to build and run it, and every choice made (readme.py)
 
 A package already in ROS 2 form (an ament package.xml or a <ros2_control> block) keeps its
@@ -42,7 +43,8 @@ from pathlib import Path
 from .. import mesh_paths
 from ..archive import shown
 from ..package import Package, as_package
-from . import cmake, controllers, defaults, launch, manifest, naming, ros2_form, rviz, urdf
+from . import (cmake, collision_meshes, controllers, defaults, launch, manifest, naming,
+               ros2_form, rviz, urdf)
 from .readme import readme
 
 MARKER = ".sw2sim-port"   # names the files an earlier port wrote, so it may be replaced
@@ -99,12 +101,15 @@ class PortReport:
 
 def port(source: str | os.PathLike | Package, out: str | os.PathLike, *,
          name: str | None = None, effort_joints=(), default_controllers: bool = True,
-         maintainer: str | None = None, license: str | None = None) -> PortReport:
+         maintainer: str | None = None, license: str | None = None,
+         simplify_collisions: bool = True) -> PortReport:
     """Write the ROS 2 package for the ROS 1 package at `source` into the folder `out`.
 
     A package with no transmissions and no ROS 1 controllers (an export as the exporter
     writes it) gets a controller for each movable joint that --effort-joints does not name
-    (sw2sim.port.defaults), unless `default_controllers` is False.
+    (sw2sim.port.defaults), unless `default_controllers` is False. A heavy collision mesh
+    gets a simplified copy (sw2sim.port.collision_meshes) unless `simplify_collisions` is
+    False.
 
     Raises sw2sim.LoadError when the source cannot be read, PortError when `out` or an
     option cannot be used; nothing is written then. `out` must be missing, empty, or an
@@ -159,10 +164,14 @@ def port(source: str | os.PathLike | Package, out: str | os.PathLike, *,
         planned, added, rewritten = _ros1(package, tree, new_name, urdf_rel, joints, effort,
                                           default_controllers, choices)
 
-    files: dict[str, str | Path] = {}
+    files: dict[str, str | Path | bytes] = {}
     for rel in _mesh_files(package.root):
         files[rel] = package.root / rel
     files.update(rewritten.meshes)
+    if simplify_collisions:
+        simplified = collision_meshes.simplify(rewritten.robot, rewritten.meshes, new_name)
+        files.update(simplified.files)
+        choices += simplified.choices
     empty = [rel for rel, path in rewritten.meshes.items()
              if path.suffix.lower() == ".stl" and path.stat().st_size <= 84]
     if empty:
@@ -397,7 +406,7 @@ class _Keep:
     aside: list[str] = field(default_factory=list)
 
 
-def _keep(out: Path, files: dict[str, str | Path]) -> _Keep:
+def _keep(out: Path, files: dict[str, str | Path | bytes]) -> _Keep:
     """What of `out`, if it is an earlier port, stays: every file the port did not write,
     and each file it wrote that the user changed since (kept in place when the new port
     writes it as the earlier did, else set aside as FILE.mine)."""
@@ -433,7 +442,7 @@ def _keep(out: Path, files: dict[str, str | Path]) -> _Keep:
     return keep
 
 
-def _write(out: Path, files: dict[str, str | Path], keep: _Keep | None = None) -> bool:
+def _write(out: Path, files: dict[str, str | Path | bytes], keep: _Keep | None = None) -> bool:
     """Write the package into a new folder beside `out`, with what `keep` keeps of it, then
     put it in `out`'s place."""
     keep = keep or _Keep()
@@ -447,6 +456,8 @@ def _write(out: Path, files: dict[str, str | Path], keep: _Keep | None = None) -
             target.parent.mkdir(parents=True, exist_ok=True)
             if isinstance(content, Path):
                 shutil.copyfile(content, target)
+            elif isinstance(content, bytes):
+                target.write_bytes(content)
             else:
                 target.write_text(content, encoding="utf-8", newline="\n")
             digests[rel] = _digest(content)

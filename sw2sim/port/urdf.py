@@ -112,9 +112,13 @@ def joint_state_rate(robot: etree._Element) -> float | None:
 
 @dataclass
 class Rewrite:
-    text: str
+    robot: etree._Element     # the new URDF, changed in place until `text` is read
     choices: list[str]
     meshes: dict[str, Path]   # the new package:// path inside the package -> the source file
+
+    @property
+    def text(self) -> str:
+        return _serialize(self.robot)
 
 
 def rewrite(tree: etree._ElementTree, package: Package, new_name: str,
@@ -156,7 +160,7 @@ def rewrite(tree: etree._ElementTree, package: Package, new_name: str,
                        "joint_state_broadcaster publishes /joint_states in ROS 2.")
     _append(robot, _ros2_control_block(robot, commands, state_joints, choices))
     _append(robot, _gz_plugin(new_name))
-    return Rewrite(_serialize(robot), choices, meshes)
+    return Rewrite(robot, choices, meshes)
 
 
 def keep_ros2(tree: etree._ElementTree, package: Package, new_name: str,
@@ -175,7 +179,7 @@ def keep_ros2(tree: etree._ElementTree, package: Package, new_name: str,
         _append(robot, _gz_plugin(new_name))
         fixes.append("it had no gz_ros2_control plugin, which starts the controllers in "
                      "Gazebo Sim: one reading config/controllers.yaml was added")
-    return Rewrite(_serialize(robot), choices, meshes), fixes
+    return Rewrite(robot, choices, meshes), fixes
 
 
 # ros2_control (Jazzy, 4.x) reads every <mimic> of a joint in a <ros2_control> block and looks

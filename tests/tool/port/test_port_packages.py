@@ -18,6 +18,7 @@ import sys
 from pathlib import Path
 
 import pytest
+import trimesh
 import yaml
 from lxml import etree
 
@@ -51,11 +52,21 @@ def workspace(tmp_path_factory):
     top = tmp_path_factory.mktemp("port_ws")
     raw = write_export(THREE_DOF_ARM, top / "raw")
     raws = {THREE_DOF_ARM.name: raw, "wheeler": raw_copy(FOUR_WHEELER_NESTED, top, "wheeler")}
+    finely_tessellated(raws["wheeler"] / "meshes" / "base_link.STL")
     reports = {}
     for source, (name, options) in SOURCES.items():
         folder = raws.get(source, ROOT / "examples" / source)
         reports[name] = port(folder, top / "src" / name, **options)
     return top, reports
+
+
+def finely_tessellated(stl: Path) -> None:
+    """The mesh with each triangle split in four until it has over 10,000 (the same shape):
+    its port's <collision> names a simplified copy in meshes/simplified/."""
+    mesh = trimesh.load(stl)
+    while len(mesh.faces) <= 10_000:
+        mesh = mesh.subdivide()
+    mesh.export(stl)
 
 
 def test_each_port_has_the_expected_name_and_files(workspace):
@@ -68,6 +79,8 @@ def test_each_port_has_the_expected_name_and_files(workspace):
             assert (report.package_dir / rel).is_file(), (name, rel)
     assert any("r3_dof_arm_description" in c and "leading digit" in c
                for c in reports["r3_dof_arm_description"].choices)
+    assert (reports["r4_wheeler_nested_description"].package_dir / "meshes" / "simplified"
+            / "base_link.STL").is_file()
     assert reports["example_5"].controllers[0] == "joint_state_broadcaster"
     assert len(reports["example_5"].controllers) == 8
 
@@ -103,8 +116,10 @@ def test_colcon_build_installs_every_port(workspace, installed):
         assert (share / "config" / "controllers.yaml").is_file()
         assert (installed / name / "share" / "ament_index" / "resource_index" / "packages"
                 / name).is_file()
-        meshes = sorted(p.name for p in (share / "meshes").iterdir())
-        assert meshes == sorted(p.name for p in (reports[name].package_dir / "meshes").iterdir())
+
+        meshes = sorted(p.relative_to(share).as_posix() for p in (share / "meshes").rglob("*"))
+        assert meshes == sorted(p.relative_to(reports[name].package_dir).as_posix()
+                                for p in (reports[name].package_dir / "meshes").rglob("*"))
         # every mesh path of the installed URDF resolves in the installed package
         for filename in _mesh_elements(share / "urdf" / f"{name}.urdf"):
             assert filename.startswith(f"package://{name}/"), (name, filename)
