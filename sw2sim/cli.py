@@ -62,6 +62,8 @@ def main(argv: list[str] | None = None) -> int:
     if args.command is None:
         parser.print_help()
         return EXIT_UNUSABLE
+    if argv is None and args.command in FILE_COMMANDS:
+        _one_blas_thread()
     try:
         with _drawing_for(args.command, argv):
             status = args.run(args)
@@ -99,6 +101,20 @@ def _end_now(status: int) -> None:
     sys.stdout.flush()
     sys.stderr.flush()
     os._exit(status)
+
+
+# Commands that read and write files and start no other process.
+FILE_COMMANDS = frozenset({"check", "compare", "convert", "render", "port", "edits"})
+
+
+def _one_blas_thread() -> None:
+    """Let numpy's OpenBLAS start one thread, not one per core, unless the user chose
+    (OPENBLAS_NUM_THREADS set). The extra threads wait for work by spinning, which takes a
+    `sw2sim check` on a lesson's package from 0.15 to 0.3 s of CPU, and twice the wall
+    time on a machine whose other cores are busy (tools/benchmark.py load); the commands'
+    small matrices gain nothing from them. It must be set before numpy is first imported,
+    so only the command line's own run sets it: a caller that passes argv keeps its own."""
+    os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 
 def _drawing_for(command: str, argv: list[str] | None):

@@ -1,8 +1,9 @@
 """What a `sw2sim check` process loads: no mesh library for the formats the check reads
 itself (binary and text STL, OBJ and COLLADA of triangles: trimesh brings scipy and
-networkx, seconds of start-up), and no OpenGL library, since the check draws nothing. A caller that runs the
+networkx, seconds of start-up), no OpenGL library, since the check draws nothing, and no
+OpenBLAS threads beside its own (they spin while they wait). A caller that runs the
 check inside a process of its own (`main(argv)`: a test, a notebook) keeps its platform,
-since it may draw afterwards."""
+since it may draw afterwards, and its environment."""
 
 from __future__ import annotations
 
@@ -33,7 +34,9 @@ def record(status, ended_at_once):
     with open(out, "w") as f:
         json.dump({"status": status, "loaded": loaded, "before": before,
                    "after": os.environ.get("MUJOCO_GL"), "draws": hasattr(mujoco, "GLContext"),
-                   "ended_at_once": ended_at_once}, f)
+                   "ended_at_once": ended_at_once,
+                   "blas": os.environ.get("OPENBLAS_NUM_THREADS"),
+                   "threads": os.listdir("/proc/self/task") if os.path.isdir("/proc/self/task") else None}, f)
 
 exit_now = os._exit
 def ending(status):
@@ -48,6 +51,8 @@ record(status, False)
 
 def _probe(tmp_path: Path, how: str, package: Path, env: dict | None = None) -> dict:
     out = tmp_path / f"probe-{how}.json"
+    if env is None:
+        env = {k: v for k, v in os.environ.items() if k != "OPENBLAS_NUM_THREADS"}
     done = subprocess.run([sys.executable, "-c", PROBE, str(out), how, str(package)],
                           cwd=tmp_path, env=env, capture_output=True, text=True, timeout=300)
     assert out.is_file(), done.stdout + done.stderr
@@ -77,6 +82,20 @@ def test_the_command_loads_neither_a_mesh_library_nor_opengl(tmp_path):
     assert found["loaded"] == []
     assert not found["draws"], "MuJoCo was imported with drawing turned off"
     assert found["after"] == found["before"], "the platform chosen for drawing is put back"
+    assert found["blas"] == "1"     # numpy's OpenBLAS starts no thread of its own
+
+
+def test_the_users_own_blas_threads_are_kept(tmp_path):
+    """OPENBLAS_NUM_THREADS=4 set by the user stays, and gives the process the threads
+    (one per core beyond the first, up to 3) that the check's own choice leaves out."""
+    package = copy_example(3, tmp_path)
+    own = _probe(tmp_path, "command", package)
+    users = _probe(tmp_path, "command", package,
+                   {**os.environ, "OPENBLAS_NUM_THREADS": "4"})
+    assert (own["blas"], users["blas"]) == ("1", "4")
+    if own["threads"] is not None:
+        extra = min(4, os.cpu_count() or 1) - 1
+        assert len(users["threads"]) == len(own["threads"]) + extra
 
 
 def test_an_obj_package_is_read_without_trimesh(tmp_path):
@@ -114,3 +133,4 @@ def test_a_caller_of_main_keeps_its_platform(tmp_path):
     assert found["status"] == 0 and not found["ended_at_once"], "main(argv) returns"
     assert found["draws"] and "OpenGL" in found["loaded"]
     assert found["after"] == "osmesa"
+    assert found["blas"] is None     # the caller's environment is its own
