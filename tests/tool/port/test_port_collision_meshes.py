@@ -138,3 +138,19 @@ def test_a_mesh_at_or_below_the_threshold_is_left_alone(tmp_path, sections):
     report = port(package, tmp_path / "out")
     assert not any("simplified" in c for c in report.choices)
     assert not (tmp_path / "out" / "meshes" / "simplified").exists()
+
+
+def test_the_page_and_the_help_state_the_numbers_the_port_uses():
+    """The threshold and the largest tolerance, as /reference/ros1-to-ros2/ and
+    `sw2sim port --help` state them."""
+    from repository import ROOT
+    from sw2sim.commands.port import HELP
+    page = " ".join((ROOT / "_pages/reference/05-ros1-to-ros2.md").read_text(
+        encoding="utf-8").split())
+    help_text = " ".join(HELP.split())
+    most = f"{max(collision_meshes.TOLERANCES) * 100:g} %"
+    for text in (page, help_text):
+        assert f"over {collision_meshes.HEAVY:,} triangles" in text or \
+            f"more than {collision_meshes.HEAVY:,} triangles" in text
+        assert f"by more than {most} of the part's size" in text
+    assert "meshes/simplified/" in page and collision_meshes.FOLDER == "meshes/simplified"
