@@ -14,6 +14,7 @@ from __future__ import annotations
 import copy
 import os
 import sys
+from collections.abc import Mapping
 from contextlib import contextmanager
 from pathlib import Path
 
@@ -42,7 +43,9 @@ def world_fixed(source: str | os.PathLike | Package) -> bool:
 
 
 def load_package(source: str | os.PathLike | Package, *, fixed_base: bool = True,
-                 scene: bool | str = True) -> mujoco.MjSpec:
+                 scene: bool | str = True,
+                 hulls: Mapping[tuple[str, tuple[float, ...]], np.ndarray] | None = None
+                 ) -> mujoco.MjSpec:
     """A MuJoCo model specification of an exported package, ready to compile.
 
     - `package://` mesh paths resolve to files inside the package;
@@ -61,7 +64,13 @@ def load_package(source: str | os.PathLike | Package, *, fixed_base: bool = True
     - `scene=False` leaves out the floor, the light, the camera and their textures, for a
       model file of the robot alone (a free base is still lifted to rest on z = 0);
       `scene="floor"` adds the floor alone, plain, for a model that is simulated and never
-      drawn (making the textures takes a hundredth of a second at every compile).
+      drawn (making the textures takes a hundredth of a second at every compile);
+    - `hulls` maps (a mesh file, resolved; its scale) to the corners of its convex hull,
+      scale applied: MuJoCo is given those corners in place of the file where every geom
+      of that mesh belongs to a link with an <inertial>. It collides with the same shape
+      (MuJoCo collides a mesh as its hull) and processes a few hundred points instead of
+      every triangle; only for a model that is simulated and never drawn (sw2sim.check's
+      stability run, which makes the map: sw2sim.check.collision_hulls).
 
     `source` is a package folder, a .urdf file or a Package already read; a Package's
     tree is left as it is (the mesh paths are rewritten in a copy).
@@ -93,6 +102,8 @@ def load_package(source: str | os.PathLike | Package, *, fixed_base: bool = True
     spec.modelname = robot.get("name") or package.name
     spec.option.integrator = mujoco.mjtIntegrator.mjINT_IMPLICITFAST
 
+    if hulls:
+        _take_hulls(spec, hulls)
     root_body = _root_body(spec, urdf)
     if fixed_base:
         _exclude_static_children(spec)
@@ -127,6 +138,24 @@ def _decodable(package: Package, path: Path, line: int | None, assets: dict[str,
                             f".stl, .obj and .msh), and it cannot be converted: {exc}", line,
                             fix="save it as binary STL beside it, with the same name") from None
     return name
+
+
+def _take_hulls(spec: mujoco.MjSpec,
+                hulls: Mapping[tuple[str, tuple[float, ...]], np.ndarray]) -> None:
+    """Give each mesh that `hulls` names its hull's corners in place of its file, where no
+    link whose mass MuJoCo would work out from its geoms (no <inertial>) uses it."""
+    weighed_by_geoms = {geom.meshname for body in spec.bodies if not body.explicitinertial
+                        for geom in body.geoms}
+    for mesh in spec.meshes:
+        if not mesh.file or mesh.name in weighed_by_geoms:
+            continue
+        corners = hulls.get((str(Path(mesh.file).resolve()),
+                             tuple(float(s) for s in mesh.scale)))
+        if corners is None:
+            continue
+        mesh.file = ""
+        mesh.uservert = np.asarray(corners, dtype=np.float64).ravel()
+        mesh.scale = [1.0, 1.0, 1.0]
 
 
 @contextmanager

@@ -14,7 +14,6 @@ other (tests/tool/test_structure_of_the_tool.py).
 
 from __future__ import annotations
 
-from . import mesh_cache
 from .context import Context, open_package
 from .repairs import Options
 from .findings import (ADVICE, BLOCKS, ERROR, FATAL, GROUPS, PACKAGING, RULES, SIMULATION, WARNING,
@@ -46,13 +45,8 @@ def check_package(source, *, stability: bool = True, options: Options = Options(
     to use it. `options` are the repairs' (`sw2sim convert`'s flags)."""
     ctx = open_package(source, options, urdf)
     if ctx.usable:
-        # MuJoCo processes the meshes for the stability run meanwhile, on another core.
-        early = mesh_cache.start(ctx) if stability else None
-        try:
-            for run in _checks():
-                run(ctx)
-        finally:
-            mesh_cache.finish(early)
+        for run in _checks():
+            run(ctx)
         # Problems of ROS packaging alone do not keep MuJoCo from running the model, and
         # the run simulates the model as convert writes it, repairs made.
         if stability and not ctx.report.simulation_stoppers:

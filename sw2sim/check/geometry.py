@@ -113,21 +113,8 @@ _merged: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
 def _shape_mesh(ctx, link, shape) -> Mesh | None:
     """The shape as a mesh in its own frame (shared: copy it before changing it)."""
     if shape.tag == "mesh":
-        cache = _merged.setdefault(ctx, {})
-        key = (ctx.mesh_content(shape), shape.get("scale"))   # files of the same bytes: once
-        if key not in cache:
-            mesh = ctx.mesh(shape)
-            # One beyond MuJoCo's limit is not measured (below): merging it would be wasted.
-            if mesh is not None and len(mesh.faces) <= STL_FACE_LIMIT \
-                    and np.isfinite(mesh.vertices).all():
-                mesh = Mesh(mesh.vertices, mesh.faces)   # merging makes new arrays: no copy
-                mesh.merge_vertices()
-            else:
-                mesh = None
-            cache[key] = mesh
-        mesh = cache[key]
-        # Beyond MuJoCo's STL limit the model does not load, and measuring would take seconds.
-        if mesh is None or len(mesh.faces) > STL_FACE_LIMIT or millimetre_suspect(link, mesh):
+        mesh = merged_mesh(ctx, shape)
+        if mesh is None or millimetre_suspect(link, mesh):
             return None
         return mesh
     if shape.tag == "box":
@@ -140,6 +127,32 @@ def _shape_mesh(ctx, link, shape) -> Mesh | None:
     if not _sizes_ok(radius, length):
         return None
     return cylinder(radius, length, sections=48)
+
+
+def merged_mesh(ctx, shape) -> Mesh | None:
+    """The file a <mesh> names, scale applied, vertices merged (shared: copy it before
+    changing it); None when it cannot be read, has a coordinate that is not finite, or has
+    more triangles than MuJoCo reads from an STL (the model does not load then, and
+    measuring would take seconds)."""
+    cache = _merged.setdefault(ctx, {})
+    key = (ctx.mesh_content(shape), shape.get("scale"))   # files of the same bytes: once
+    if key not in cache:
+        mesh = ctx.mesh(shape)
+        if mesh is not None and len(mesh.faces) <= STL_FACE_LIMIT \
+                and np.isfinite(mesh.vertices).all():
+            mesh = Mesh(mesh.vertices, mesh.faces)   # merging makes new arrays: no copy
+            mesh.merge_vertices()
+        else:
+            mesh = None
+        cache[key] = mesh
+    return cache[key]
+
+
+def closed_volume(mesh: Mesh) -> float | None:
+    """The volume a shared shape mesh encloses (`_enclosed_volume`), worked out once."""
+    if mesh not in _volumes:
+        _volumes[mesh] = _enclosed_volume(mesh)
+    return _volumes[mesh]
 
 
 def _sizes_ok(*sizes) -> bool:
@@ -156,9 +169,7 @@ _solids: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
 def enclosed_volume(piece: Piece) -> float | None:
     """The volume the piece's mesh encloses, in m^3, when it is a closed solid; None when
     its mesh is open, inverted or broken (the meshes `closed_solid` refuses)."""
-    if piece.local not in _volumes:
-        _volumes[piece.local] = _enclosed_volume(piece.local)
-    return _volumes[piece.local]
+    return closed_volume(piece.local)
 
 
 def _enclosed_volume(mesh: Mesh) -> float | None:

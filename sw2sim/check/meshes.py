@@ -140,7 +140,8 @@ rule("mesh-heavy-collision", WARNING, "mesh", "The collision geometry is the ful
      cause="The exporter writes the same mesh for <visual> and <collision>; a detailed part "
            "gives a collision mesh of tens of thousands of triangles.",
      fix="Use a simpler collision shape: a <box>, <cylinder> or <sphere> around the part, or "
-         "a coarse or decimated copy of the mesh in meshes/ for <collision> only.",
+         "a coarse or decimated copy of the mesh in meshes/ for <collision> only (`sw2sim "
+         "port` writes such copies in meshes/simplified/ of the ROS 2 package).",
      seen_in=("solidworks_urdf_exporter#133",))
 
 

@@ -22,6 +22,7 @@ import numpy as np
 
 from ..actuators import joint_inertia
 from ..loader import load_package
+from .collision_hulls import hulls
 from ..package import LoadError
 from ..ros_control import add_motors
 from .findings import ERROR, WARNING, rule
@@ -96,7 +97,8 @@ def check(ctx) -> dict:
         try:
             package = ctx.repaired_package()   # as convert writes it
             fixed = package.world_fixed
-            spec = load_package(package, fixed_base=fixed, scene="floor")   # never drawn
+            spec = load_package(package, fixed_base=fixed, scene="floor",   # never drawn
+                                hulls=hulls(ctx))
             try:
                 motors = add_motors(spec, package)
             except (LoadError, ValueError):

@@ -17,7 +17,7 @@ into the folder OUT (the package's folder: put it in a workspace's src/):
                            its joints and wheel_velocity_controller (velocity) for its
                            wheels, unless --no-controllers
   launch/display.launch.py, launch/gazebo.launch.py   RViz; Gazebo Sim with the controllers
-  meshes/                  copied; a <collision> mesh over 10,000 triangles gets a copy in
+  meshes/                  copied; a <collision> mesh over 20,000 triangles gets a copy in
                            meshes/simplified/ (no surface moved by more than 0.5 % of the
                            part's size), unless --keep-collision-meshes
   README.md                how to build and run it, and every choice made for you
@@ -64,7 +64,7 @@ def add_arguments(parser) -> None:
                              "(default: the source's, else TODO)")
     parser.add_argument("--keep-collision-meshes", dest="simplify_collisions",
                         action="store_false",
-                        help="use each <collision>'s mesh whole (by default one over 10,000 "
+                        help="use each <collision>'s mesh whole (by default one over 20,000 "
                              "triangles gets a simplified copy in meshes/simplified/)")
     urdf_choice(parser)
 

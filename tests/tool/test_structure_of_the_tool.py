@@ -11,7 +11,8 @@ from module_graph import (dependency_graph, find_cycle, imported, imports, long_
 TOOL = "sw2sim"
 RULE_MODULES = {"structure", "package_xml", "meshes", "inertia", "joints", "collisions", "stability"}
 # What a rule module may import from sw2sim.check (besides the tool's modules outside it).
-SHARED = {"findings", "context", "urdf", "geometry", "repairs", "trimeshes", "density_command"}
+SHARED = {"findings", "context", "urdf", "geometry", "repairs", "trimeshes", "density_command",
+          "collision_hulls"}
 # lxml's and the standard library's ways to parse XML: only sw2sim.xmlsafe may use them.
 PARSERS = {"parse", "fromstring", "XML", "XMLParser", "iterparse", "XMLPullParser", "HTML",
            "fromstringlist", "XMLID", "XMLDTDID"}

@@ -79,7 +79,7 @@ def test_the_heavy_collision_mesh_gets_a_faithful_simplified_copy(tmp_path):
 
     said = [c for c in report.choices if "simplified" in c]
     assert len(said) == 1
-    assert (f"1 collision mesh(es) over 10,000 triangles got a simplified copy in "
+    assert (f"1 collision mesh(es) over 20,000 triangles got a simplified copy in "
             f"meshes/simplified/") in said[0]
     assert f"meshes/prox_link.STL 24,000 -> {len(copy.faces):,} triangles" in said[0]
     assert f"({24_000 - len(copy.faces):,} triangles fewer" in said[0]
@@ -130,9 +130,9 @@ def test_a_copy_takes_a_free_name_beside_the_packages_own_simplified_folder():
         "meshes/simplified/visual/arm.STL"
 
 
-@pytest.mark.parametrize("sections", [300, 1250])
+@pytest.mark.parametrize("sections", [300, 2500])
 def test_a_mesh_at_or_below_the_threshold_is_left_alone(tmp_path, sections):
-    """2,400 and 10,000 triangles: at most HEAVY, so the collision keeps the mesh."""
+    """2,400 and 20,000 triangles: at most HEAVY, so the collision keeps the mesh."""
     package = write_export(THREE_DOF_ARM, tmp_path / "src")
     fine_part(package / "meshes" / "prox_link.STL", sections)
     report = port(package, tmp_path / "out")
@@ -154,3 +154,9 @@ def test_the_page_and_the_help_state_the_numbers_the_port_uses():
             f"more than {collision_meshes.HEAVY:,} triangles" in text
         assert f"by more than {most} of the part's size" in text
     assert "meshes/simplified/" in page and collision_meshes.FOLDER == "meshes/simplified"
+
+
+def test_the_port_calls_heavy_what_the_check_calls_heavy():
+    """A mesh `sw2sim check` warns about (mesh-heavy-collision) is one the port lightens."""
+    from sw2sim.check.meshes import HEAVY_FACES
+    assert collision_meshes.HEAVY == HEAVY_FACES

@@ -61,10 +61,10 @@ def workspace(tmp_path_factory):
 
 
 def finely_tessellated(stl: Path) -> None:
-    """The mesh with each triangle split in four until it has over 10,000 (the same shape):
+    """The mesh with each triangle split in four until it has over 20,000 (the same shape):
     its port's <collision> names a simplified copy in meshes/simplified/."""
     mesh = trimesh.load(stl)
-    while len(mesh.faces) <= 10_000:
+    while len(mesh.faces) <= 20_000:
         mesh = mesh.subdivide()
     mesh.export(stl)
 
