@@ -115,3 +115,21 @@ def test_an_open_mesh_keeps_its_file(heavy_arm):
     ctx = open_package(heavy_arm)
     assert not any(k[0].endswith("middle_arm_link.STL") for k in collision_hulls.hulls(ctx))
     assert any(k[0].endswith("end_arm_link.STL") for k in collision_hulls.hulls(ctx))
+
+
+
+def test_an_obj_keeps_its_file(tmp_path):
+    """MuJoCo's hull of an OBJ takes every `v` line, also one no face uses, which the
+    check's reader (as trimesh) leaves out: the two could differ, so the file is given."""
+    from sw2sim.check import trimeshes
+    package = copy_example(3, tmp_path)
+    urdf = next((package / "urdf").glob("*.urdf"))
+    stl = package / "meshes" / "end_arm_link.STL"
+    mesh = trimeshes.read(stl)
+    mesh.merge_vertices()
+    lines = [f"v {x!r} {y!r} {z!r}" for x, y, z in mesh.vertices.tolist()] + ["v 1 1 1"]
+    lines += [f"f {a} {b} {c}" for a, b, c in (mesh.faces + 1).tolist()]
+    stl.with_suffix(".obj").write_text("\n".join(lines) + "\n")
+    urdf.write_text(urdf.read_text().replace('end_arm_link.STL"', 'end_arm_link.obj"'))
+    hulls = collision_hulls.hulls(open_package(package))
+    assert len(hulls) == 2 and not any(k[0].endswith(".obj") for k in hulls)
