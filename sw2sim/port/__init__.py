@@ -169,7 +169,8 @@ def port(source: str | os.PathLike | Package, out: str | os.PathLike, *,
         files[rel] = package.root / rel
     files.update(rewritten.meshes)
     if simplify_collisions:
-        simplified = collision_meshes.simplify(rewritten.robot, rewritten.meshes, new_name)
+        simplified = collision_meshes.simplify(rewritten.robot, rewritten.meshes, new_name,
+                                                   taken=files)
         files.update(simplified.files)
         choices += simplified.choices
     empty = [rel for rel, path in rewritten.meshes.items()

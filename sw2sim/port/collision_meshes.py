@@ -47,13 +47,14 @@ class _Result:
     why_not: str = ""
 
 
-def simplify(robot, meshes: dict[str, Path], new_name: str) -> Simplified:
+def simplify(robot, meshes: dict[str, Path], new_name: str, taken=()) -> Simplified:
     """Point each <collision> whose mesh (a path of `meshes`, package://<new_name>/...) is
-    heavy at a simplified copy; return the copies and one line of what was done."""
+    heavy at a simplified copy; return the copies and one line of what was done. A copy
+    takes no path of `meshes` or `taken` (the other files the package gets)."""
     out = Simplified()
     prefix = f"package://{new_name}/"
     done: dict[str, _Result] = {}
-    taken = set(meshes)
+    taken = set(meshes) | set(taken)
     for collision in robot.iter("collision"):
         for mesh in collision.iterfind("geometry/mesh"):
             filename = (mesh.get("filename") or "").strip()
@@ -108,14 +109,17 @@ def _simplified(source: Path, rel: str, scale: float, taken: set[str],
         smaller = solid.simplify(tolerance)
         if smaller.num_tri() <= TARGET:
             break
-    after = smaller.num_tri()
-    if after * 2 > before or after < 4:
-        return _Result("", before, why_not=f"simplifying it within {tolerance * scale * 1000:.2g}"
-                       f" mm leaves {after:,} triangles, not half as many")
+    after, within = smaller.num_tri(), tolerance * scale * 1000
+    if after < 4:
+        return _Result("", before, why_not=f"simplifying it within {within:.2g} mm leaves no "
+                       "solid (the part is too thin for that)")
+    if after * 2 > before:
+        return _Result("", before, why_not=f"simplifying it within {within:.2g} mm leaves "
+                       f"{after:,} triangles, not half as many")
     copy = _free_name(rel, taken)
     taken.add(copy)
     files[copy] = _stl(smaller)
-    return _Result(copy, before, after, tolerance * scale * 1000)
+    return _Result(copy, before, after, within)
 
 
 def _free_name(rel: str, taken: set[str]) -> str:

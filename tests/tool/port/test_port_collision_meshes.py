@@ -160,3 +160,18 @@ def test_the_port_calls_heavy_what_the_check_calls_heavy():
     """A mesh `sw2sim check` warns about (mesh-heavy-collision) is one the port lightens."""
     from sw2sim.check.meshes import HEAVY_FACES
     assert collision_meshes.HEAVY == HEAVY_FACES
+
+
+def test_a_copy_never_replaces_a_file_the_package_has_in_meshes_simplified(tmp_path):
+    """A package's own meshes/simplified/prox_link.STL (no URDF names it) is copied as it
+    is; the port's copy takes another name."""
+    src = heavy_arm(tmp_path / "src")
+    own = src / "meshes" / "simplified" / "prox_link.STL"
+    own.parent.mkdir()
+    own.write_bytes((src / "meshes" / "base_link.STL").read_bytes())
+    out = tmp_path / "out"
+    port(src, out)
+    assert (out / "meshes/simplified/prox_link.STL").read_bytes() == own.read_bytes()
+    collisions = mesh_paths(out / "urdf" / f"{PACKAGE}.urdf", "collision")
+    assert collisions["prox_link"] == f"package://{PACKAGE}/meshes/simplified/prox_link_2.STL"
+    assert len(read(out / "meshes/simplified/prox_link_2.STL").faces) <= collision_meshes.TARGET
