@@ -58,5 +58,8 @@ def _corners(ctx, shape) -> np.ndarray | None:
     volume = closed_volume(mesh)
     if volume is None or volume < SMALLEST:
         return None
-    solid = hull(mesh.vertices)
+    try:
+        solid = hull(mesh.vertices)
+    except Exception:  # noqa: BLE001  (manifold3d refuses some inputs: MuJoCo reads the file)
+        return None
     return None if solid is None else solid.vertices
