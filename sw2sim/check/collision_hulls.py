@@ -11,9 +11,11 @@ links weigh what their <inertial> says, as before.
 A mesh keeps its file where the hull would change anything the check reports:
 - its link has no <inertial>: MuJoCo then weighs the link from its collision geometry,
   and a hull encloses more than the mesh (`sw2sim.loader` checks this on the model);
-- it is not a closed, outward-facing STL of a volume (an open, inverted or flat mesh, a
-  COLLADA or OBJ file, one beyond MuJoCo's 200,000 triangles): MuJoCo's own complaints
-  about it, which the check reports as `mujoco-compile` or `sim-warning`, must come.
+- it is not a closed, outward-facing STL or OBJ of a volume (an open, inverted or flat
+  mesh, a COLLADA file, an OBJ in a form the check's own reader does not read, one
+  beyond MuJoCo's 200,000 triangles): MuJoCo's own complaints about it, which the check
+  reports as `mujoco-compile` or `sim-warning`, must come.
+An OBJ's hull is made of every `v` line, as MuJoCo's is, also of a corner no face uses.
 For a closed solid MuJoCo has none: its mesh checks fail only for a surface of no area or
 no volume, or a mass distribution no solid has (mujoco's src/user/user_mesh.cc,
 mjCMesh::Process).
@@ -25,7 +27,7 @@ import numpy as np
 
 from ..mesh_formats import stand_in
 from .geometry import closed_volume, merged_mesh
-from .trimeshes import hull
+from .trimeshes import hull, obj_positions
 from .urdf import vector
 
 # m^3: a solid below this is left to MuJoCo, whose own limit (mjMINVAL) is 1e-15.
@@ -42,24 +44,33 @@ def hulls(ctx) -> dict[tuple[str, tuple[float, ...]], np.ndarray]:
         for shape in link.findall("collision/geometry/mesh"):
             path = ctx.mesh_file(shape)
             scale = vector(shape.get("scale") or "1 1 1", 3)
-            if path is None or scale is None or path.suffix.lower() != ".stl" \
+            if path is None or scale is None or path.suffix.lower() not in (".stl", ".obj") \
                     or stand_in(path) != path:
                 continue
             key = (str(path.resolve()), tuple(float(s) for s in scale))
             if key not in found:
-                found[key] = _corners(ctx, shape)
+                found[key] = _corners(ctx, shape, scale, obj=path.suffix.lower() == ".obj")
     return {key: corners for key, corners in found.items() if corners is not None}
 
 
-def _corners(ctx, shape) -> np.ndarray | None:
+def _corners(ctx, shape, scale, obj: bool) -> np.ndarray | None:
     mesh = merged_mesh(ctx, shape)
     if mesh is None:
         return None
     volume = closed_volume(mesh)
     if volume is None or volume < SMALLEST:
         return None
+    points = mesh.vertices
+    if obj:
+        # MuJoCo's hull takes every `v` line, also a corner no face uses (the check's
+        # reader, as trimesh, leaves those out)
+        data = ctx.mesh_content(shape)
+        positions = obj_positions(data) if isinstance(data, bytes) else None
+        if positions is None:
+            return None
+        points = positions * np.asarray(scale, dtype=np.float64)
     try:
-        solid = hull(mesh.vertices)
+        solid = hull(points)
     except Exception:  # noqa: BLE001  (manifold3d refuses some inputs: MuJoCo reads the file)
         return None
     return None if solid is None else solid.vertices

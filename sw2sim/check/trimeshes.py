@@ -166,6 +166,27 @@ def _obj(data: bytes) -> Mesh:
     coordinates or normals, one vertex per distinct combination; the same is done here.
     The lines are sorted out with byte counts and the numbers read by numpy: a loop over
     the lines in Python would take a second for a million triangles."""
+    text, counts, vertices = _obj_positions(data)
+    faces = _statements(text, b"f ", counts[b"f "])[1:] + b"\n"
+    columns = _corner_columns(faces, counts[b"f "])
+    limits = [len(vertices)] + [counts[key] for key in columns]
+    refs = _parsed(faces.replace(b"/", b" "), np.int64)
+    if len(refs) != 3 * len(limits) * counts[b"f "]:
+        raise _NotSimple
+    refs = refs.reshape(-1, len(limits)) - 1
+    if (refs < 0).any() or (refs >= limits).any() or math.prod(limits) >= 2 ** 62:
+        raise _NotSimple   # an index 0 or past the end (trimesh fails or wraps it round)
+    key, scale = refs[:, 0], 1
+    for column, limit in zip(refs.T[1:], limits[1:]):
+        key, scale = key * limit + column, scale * limit
+    combos, inverse = np.unique(key, return_inverse=True)
+    return Mesh(vertices[combos // scale], inverse.reshape(-1, 3))
+
+
+def _obj_positions(data: bytes) -> tuple[bytes, dict[bytes, int], np.ndarray]:
+    """An OBJ in the simple form `_obj` reads: its text (each line after a newline), its
+    statement counts, and every `v` line's position (n x 3), also of a corner no face uses;
+    else _NotSimple."""
     _decoded(data)   # another encoding: trimesh guesses which
     if b"\\" in data or b"\t" in data or data.count(b"\r") != data.count(b"\r\n"):
         raise _NotSimple   # continued lines, tabs, old Mac line ends: trimesh's own ways
@@ -186,21 +207,17 @@ def _obj(data: bytes) -> Mesh:
     if len(first.split()) != 3 or len(vertices) != 3 * counts[b"v "] \
             or not np.isfinite(vertices).all():
         raise _NotSimple   # vertices with colours or weights, not-a-number
-    vertices = vertices.reshape(-1, 3)
-    faces = _statements(text, b"f ", counts[b"f "])[1:] + b"\n"
-    columns = _corner_columns(faces, counts[b"f "])
-    limits = [len(vertices)] + [counts[key] for key in columns]
-    refs = _parsed(faces.replace(b"/", b" "), np.int64)
-    if len(refs) != 3 * len(limits) * counts[b"f "]:
-        raise _NotSimple
-    refs = refs.reshape(-1, len(limits)) - 1
-    if (refs < 0).any() or (refs >= limits).any() or math.prod(limits) >= 2 ** 62:
-        raise _NotSimple   # an index 0 or past the end (trimesh fails or wraps it round)
-    key, scale = refs[:, 0], 1
-    for column, limit in zip(refs.T[1:], limits[1:]):
-        key, scale = key * limit + column, scale * limit
-    combos, inverse = np.unique(key, return_inverse=True)
-    return Mesh(vertices[combos // scale], inverse.reshape(-1, 3))
+    return text, counts, vertices.reshape(-1, 3)
+
+
+def obj_positions(data: bytes) -> np.ndarray | None:
+    """Every `v` line's position of an OBJ, also a corner no face uses, which `read` leaves
+    out (as trimesh does) and MuJoCo keeps; None unless the file has the simple form `read`
+    reads itself."""
+    try:
+        return _obj_positions(data)[2]
+    except _NotSimple:
+        return None
 
 
 def _statements(text: bytes, key: bytes, count: int) -> bytes:

@@ -118,18 +118,55 @@ def test_an_open_mesh_keeps_its_file(heavy_arm):
 
 
 
-def test_an_obj_keeps_its_file(tmp_path):
-    """MuJoCo's hull of an OBJ takes every `v` line, also one no face uses, which the
-    check's reader (as trimesh) leaves out: the two could differ, so the file is given."""
+
+def _as_obj(package, stray=None):
+    """The package with each binary STL written as an OBJ of its merged triangles; `stray`,
+    a point, is added as a corner no face uses."""
     from sw2sim.check import trimeshes
-    package = copy_example(3, tmp_path)
     urdf = next((package / "urdf").glob("*.urdf"))
-    stl = package / "meshes" / "end_arm_link.STL"
-    mesh = trimeshes.read(stl)
-    mesh.merge_vertices()
-    lines = [f"v {x!r} {y!r} {z!r}" for x, y, z in mesh.vertices.tolist()] + ["v 1 1 1"]
-    lines += [f"f {a} {b} {c}" for a, b, c in (mesh.faces + 1).tolist()]
-    stl.with_suffix(".obj").write_text("\n".join(lines) + "\n")
-    urdf.write_text(urdf.read_text().replace('end_arm_link.STL"', 'end_arm_link.obj"'))
+    text = urdf.read_text()
+    for stl in sorted((package / "meshes").glob("*.STL")):
+        mesh = trimeshes.read(stl)
+        mesh.merge_vertices()
+        lines = [f"v {x!r} {y!r} {z!r}" for x, y, z in mesh.vertices.tolist()]
+        lines += [f"v {stray[0]!r} {stray[1]!r} {stray[2]!r}"] if stray is not None else []
+        lines += [f"f {a} {b} {c}" for a, b, c in (mesh.faces + 1).tolist()]
+        stl.with_suffix(".obj").write_text("\n".join(lines) + "\n")
+        stl.unlink()
+        text = text.replace(f"{stl.name}\"", f"{stl.stem}.obj\"")
+    urdf.write_text(text)
+    return package
+
+
+def test_obj_meshes_get_hulls_with_the_same_verdict(heavy_arm, monkeypatch):
+    package = _as_obj(heavy_arm)
+    assert len(collision_hulls.hulls(open_package(package))) == 3
+    with_hulls = _figures(check(package))
+    monkeypatch.setattr(stability, "hulls", lambda ctx: {})
+    assert _figures(check(package)) == with_hulls
+
+
+def test_an_obj_corner_no_face_uses_is_in_the_hull_as_in_mujoco_s(tmp_path):
+    """MuJoCo keeps a `v` line no face uses, and its hull reaches it: the hull given in the
+    file's place reaches it too, so the model's collision extent is MuJoCo's own."""
+    package = _as_obj(copy_example(3, tmp_path), stray=(0.5, 0.5, 0.5))
     hulls = collision_hulls.hulls(open_package(package))
-    assert len(hulls) == 2 and not any(k[0].endswith(".obj") for k in hulls)
+    assert len(hulls) == 3
+    whole = sw2sim.load_package(package, scene="floor").compile()
+    light = sw2sim.load_package(package, scene="floor", hulls=hulls).compile()
+    reaches = []
+    for model in (whole, light):
+        data = mujoco.MjData(model)
+        mujoco.mj_kinematics(model, data)
+        found = []
+        for geom in range(model.ngeom):
+            mesh = model.geom_dataid[geom]
+            if not model.geom_contype[geom] or mesh < 0:
+                continue
+            first = model.mesh_vertadr[mesh]
+            local = model.mesh_vert[first:first + model.mesh_vertnum[mesh]]
+            world = local @ data.geom_xmat[geom].reshape(3, 3).T + data.geom_xpos[geom]
+            found.append(np.concatenate([world.min(axis=0), world.max(axis=0)]))
+        reaches.append(np.array(found))
+    assert np.allclose(reaches[0], reaches[1], atol=1e-6)
+    assert (reaches[0][:, 3:] > 0.45).any()       # the stray corner is in MuJoCo's too
