@@ -24,10 +24,11 @@ mjCMesh::Process).
 from __future__ import annotations
 
 import numpy as np
+from manifold3d import Manifold
 
 from ..mesh_formats import stand_in
-from .geometry import closed_volume, merged_mesh
-from .trimeshes import hull, obj_positions
+from .geometry import closed_volume, hull_solid, merged_mesh
+from .trimeshes import obj_positions
 from .urdf import vector
 
 # m^3: a solid below this is left to MuJoCo, whose own limit (mjMINVAL) is 1e-15.
@@ -60,17 +61,19 @@ def _corners(ctx, shape, scale, obj: bool) -> np.ndarray | None:
     volume = closed_volume(mesh)
     if volume is None or volume < SMALLEST:
         return None
-    points = mesh.vertices
-    if obj:
-        # MuJoCo's hull takes every `v` line, also a corner no face uses (the check's
-        # reader, as trimesh, leaves those out)
-        data = ctx.mesh_content(shape)
-        positions = obj_positions(data) if isinstance(data, bytes) else None
-        if positions is None:
-            return None
-        points = positions * np.asarray(scale, dtype=np.float64)
     try:
-        solid = hull(points)
+        if obj:
+            # MuJoCo's hull takes every `v` line, also a corner no face uses (the check's
+            # reader, as trimesh, leaves those out)
+            data = ctx.mesh_content(shape)
+            positions = obj_positions(data) if isinstance(data, bytes) else None
+            if positions is None:
+                return None
+            solid = Manifold.hull_points(positions * np.asarray(scale, dtype=np.float64))
+        else:
+            solid = hull_solid(mesh)     # the collision checks' own
     except Exception:  # noqa: BLE001  (manifold3d refuses some inputs: MuJoCo reads the file)
         return None
-    return None if solid is None else solid.vertices
+    if solid.volume() <= 0:
+        return None
+    return np.asarray(solid.to_mesh().vert_properties, dtype=np.float64)[:, :3]

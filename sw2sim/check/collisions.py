@@ -22,7 +22,7 @@ import numpy as np
 
 from ..xmlsafe import source_line
 from .findings import WARNING, rule
-from .geometry import FAR, Piece, Tree, closed_solid, enclosed_volume, link_geometry
+from .geometry import FAR, Piece, Tree, closed_solid, enclosed_volume, hull_solid, link_geometry
 
 # Overlaps smaller than either of these are contact, not interpenetration.
 MIN_SHARE = 0.01        # of the smaller part's volume
@@ -104,7 +104,7 @@ class _Placed:
         piece.mesh.apply_transform(pose)  # link_geometry's own copy: moving it is safe
         self.bounds = piece.mesh.bounds
         self.volume = enclosed_volume(piece)   # None when the mesh is not closed
-        self.hull = manifold3d.Manifold.hull_points(piece.mesh.vertices)
+        self.hull = hull_solid(piece.local).transform((pose @ piece.pose)[:3, :4])
 
     @functools.cached_property
     def solid(self) -> manifold3d.Manifold | None:

@@ -148,6 +148,15 @@ def merged_mesh(ctx, shape) -> Mesh | None:
     return cache[key]
 
 
+def hull_solid(mesh: Mesh) -> manifold3d.Manifold:
+    """The convex hull of a shared shape mesh's vertices, worked out once (the collision
+    checks place it, the stability run gives its corners to MuJoCo)."""
+    if mesh not in _hulls:
+        _hulls[mesh] = manifold3d.Manifold.hull_points(np.asarray(mesh.vertices,
+                                                                  dtype=np.float64))
+    return _hulls[mesh]
+
+
 def closed_volume(mesh: Mesh) -> float | None:
     """The volume a shared shape mesh encloses (`_enclosed_volume`), worked out once."""
     if mesh not in _volumes:
@@ -164,6 +173,7 @@ def _sizes_ok(*sizes) -> bool:
 # Each shared shape mesh as a closed solid (or False), so that a file is built once.
 _volumes: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
 _solids: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+_hulls: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
 
 
 def enclosed_volume(piece: Piece) -> float | None:
