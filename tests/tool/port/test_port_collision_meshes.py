@@ -46,6 +46,12 @@ def heavy_arm(folder: Path, open_surface: bool = False) -> Path:
     return package
 
 
+@pytest.fixture(scope="module")
+def source(tmp_path_factory) -> Path:
+    """The arm with its fine part, written once for the tests that only read it."""
+    return heavy_arm(tmp_path_factory.mktemp("heavy_arm"))
+
+
 def mesh_paths(urdf: Path, kind: str) -> dict[str, str]:
     """link -> the filename of its <kind> mesh."""
     return {link.get("name"): link.find(f"{kind}/geometry/mesh").get("filename")
@@ -53,8 +59,8 @@ def mesh_paths(urdf: Path, kind: str) -> dict[str, str]:
             if link.find(f"{kind}/geometry/mesh") is not None}
 
 
-def test_the_heavy_collision_mesh_gets_a_faithful_simplified_copy(tmp_path):
-    src = heavy_arm(tmp_path / "src")
+def test_the_heavy_collision_mesh_gets_a_faithful_simplified_copy(source, tmp_path):
+    src = source
     out = tmp_path / "out"
     report = port(src, out)
     urdf = out / "urdf" / f"{PACKAGE}.urdf"
@@ -92,8 +98,8 @@ def test_the_heavy_collision_mesh_gets_a_faithful_simplified_copy(tmp_path):
     assert sorted(faces.values())[-1] >= 24_000 // 2 and len(faces) == 5
 
 
-def test_porting_again_writes_the_same_copy(tmp_path):
-    src = heavy_arm(tmp_path / "src")
+def test_porting_again_writes_the_same_copy(source, tmp_path):
+    src = source
     out = tmp_path / "out"
     port(src, out)
     first = (out / "meshes/simplified/prox_link.STL").read_bytes()
@@ -102,8 +108,8 @@ def test_porting_again_writes_the_same_copy(tmp_path):
     assert (out / "meshes/simplified/prox_link.STL").read_bytes() == first
 
 
-def test_keep_collision_meshes_uses_them_whole(tmp_path, capsys):
-    src = heavy_arm(tmp_path / "src")
+def test_keep_collision_meshes_uses_them_whole(source, tmp_path, capsys):
+    src = source
     out = tmp_path / "out"
     assert main(["port", str(src), "-o", str(out), "--keep-collision-meshes"]) == 0
     assert "simplified" not in capsys.readouterr().out
