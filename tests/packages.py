@@ -42,6 +42,26 @@ def zipped(folder: Path, archive_path: Path, *, backslashes=False, macos=False) 
     return archive_path
 
 
+def as_obj(package: Path, stray=None) -> Path:
+    """The package with each binary STL rewritten as an OBJ of its merged triangles (the
+    STL removed, the URDF naming the OBJ); `stray`, a point, is added to each as a corner
+    that no face uses."""
+    from sw2sim.check import trimeshes
+    urdf = next((package / "urdf").glob("*.urdf"))
+    text = urdf.read_text()
+    for stl in sorted((package / "meshes").glob("*.STL")):
+        mesh = trimeshes.read(stl)
+        mesh.merge_vertices()
+        lines = [f"v {x!r} {y!r} {z!r}" for x, y, z in mesh.vertices.tolist()]
+        lines += [f"v {stray[0]!r} {stray[1]!r} {stray[2]!r}"] if stray is not None else []
+        lines += [f"f {a} {b} {c}" for a, b, c in (mesh.faces + 1).tolist()]
+        stl.with_suffix(".obj").write_text("\n".join(lines) + "\n")
+        stl.unlink()
+        text = text.replace(f"{stl.name}\"", f"{stl.stem}.obj\"")
+    urdf.write_text(text)
+    return package
+
+
 def urdf_of(package: Path) -> Path:
     """The package's URDF file."""
     return next((package / "urdf").glob("*.urdf"))

@@ -14,9 +14,8 @@ import sys
 from pathlib import Path
 
 import pytest
-from packages import copy_example
+from packages import as_obj, copy_example
 
-from sw2sim.check import trimeshes
 
 # Runs `sw2sim check` as the command line does (main() reading sys.argv) or as a caller
 # does (main(argv)), then writes what the process holds to the file named first. The
@@ -59,22 +58,6 @@ def _probe(tmp_path: Path, how: str, package: Path, env: dict | None = None) -> 
     return json.loads(out.read_text())
 
 
-def _as_obj(package: Path) -> Path:
-    """The package with each binary STL rewritten as an OBJ of its merged triangles."""
-    urdf = next((package / "urdf").glob("*.urdf"))
-    text = urdf.read_text()
-    for stl in sorted((package / "meshes").glob("*.STL")):
-        mesh = trimeshes.read(stl)
-        mesh.merge_vertices()
-        lines = [f"v {x!r} {y!r} {z!r}" for x, y, z in mesh.vertices.tolist()]
-        lines += [f"f {a} {b} {c}" for a, b, c in (mesh.faces + 1).tolist()]
-        stl.with_suffix(".obj").write_text("\n".join(lines) + "\n")
-        stl.unlink()
-        text = text.replace(f"{stl.name}\"", f"{stl.stem}.obj\"")
-    urdf.write_text(text)
-    return package
-
-
 def test_the_command_loads_neither_a_mesh_library_nor_opengl(tmp_path):
     package = copy_example(1, tmp_path)
     found = _probe(tmp_path, "command", package)
@@ -99,7 +82,7 @@ def test_the_users_own_blas_threads_are_kept(tmp_path):
 
 
 def test_an_obj_package_is_read_without_trimesh(tmp_path):
-    package = _as_obj(copy_example(3, tmp_path))
+    package = as_obj(copy_example(3, tmp_path))
     found = _probe(tmp_path, "command", package)
     assert found["status"] == 0 and found["loaded"] == []
 

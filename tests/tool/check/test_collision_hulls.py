@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 import trimesh
 from lxml import etree
-from packages import copy_example
+from packages import as_obj, copy_example
 
 import sw2sim
 from sw2sim.check import check, collision_hulls, open_package, stability
@@ -119,27 +119,8 @@ def test_an_open_mesh_keeps_its_file(heavy_arm):
 
 
 
-def _as_obj(package, stray=None):
-    """The package with each binary STL written as an OBJ of its merged triangles; `stray`,
-    a point, is added as a corner no face uses."""
-    from sw2sim.check import trimeshes
-    urdf = next((package / "urdf").glob("*.urdf"))
-    text = urdf.read_text()
-    for stl in sorted((package / "meshes").glob("*.STL")):
-        mesh = trimeshes.read(stl)
-        mesh.merge_vertices()
-        lines = [f"v {x!r} {y!r} {z!r}" for x, y, z in mesh.vertices.tolist()]
-        lines += [f"v {stray[0]!r} {stray[1]!r} {stray[2]!r}"] if stray is not None else []
-        lines += [f"f {a} {b} {c}" for a, b, c in (mesh.faces + 1).tolist()]
-        stl.with_suffix(".obj").write_text("\n".join(lines) + "\n")
-        stl.unlink()
-        text = text.replace(f"{stl.name}\"", f"{stl.stem}.obj\"")
-    urdf.write_text(text)
-    return package
-
-
 def test_obj_meshes_get_hulls_with_the_same_verdict(heavy_arm, monkeypatch):
-    package = _as_obj(heavy_arm)
+    package = as_obj(heavy_arm)
     assert len(collision_hulls.hulls(open_package(package))) == 3
     with_hulls = _figures(check(package))
     monkeypatch.setattr(stability, "hulls", lambda ctx: {})
@@ -149,7 +130,7 @@ def test_obj_meshes_get_hulls_with_the_same_verdict(heavy_arm, monkeypatch):
 def test_an_obj_corner_no_face_uses_is_in_the_hull_as_in_mujoco_s(tmp_path):
     """MuJoCo keeps a `v` line no face uses, and its hull reaches it: the hull given in the
     file's place reaches it too, so the model's collision extent is MuJoCo's own."""
-    package = _as_obj(copy_example(3, tmp_path), stray=(0.5, 0.5, 0.5))
+    package = as_obj(copy_example(3, tmp_path), stray=(0.5, 0.5, 0.5))
     hulls = collision_hulls.hulls(open_package(package))
     assert len(hulls) == 3
     whole = sw2sim.load_package(package, scene="floor").compile()
