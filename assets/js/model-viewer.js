@@ -132,6 +132,18 @@ function addSlider(viewer, joint, index, onChange) {
   return () => { input.value = start; show(); };
 }
 
+// An empty scene on the viewers' background, lit from the sky and by a sun: the model
+// viewer's, and the "Your own model" simulator's.
+export function litScene(THREE) {
+  const scene = new THREE.Scene();
+  scene.background = new THREE.Color(BACKGROUND);
+  scene.add(new THREE.HemisphereLight(0xffffff, 0x8a8f96, 2.2));
+  const sun = new THREE.DirectionalLight(0xffffff, 2.2);
+  sun.position.set(2, 4, 3);
+  scene.add(sun);
+  return scene;
+}
+
 // Places the camera on VIEW_DIRECTION from the centre of the box, as close as it can be
 // with every corner of the box inside the picture.
 export function fitCamera(THREE, camera, box) {
@@ -173,12 +185,7 @@ function buildScene(THREE, OrbitControls, viewer, robot) {
     "The model in 3D. Drag, or use the arrow keys, to move the view.");
   part(viewer, "stage").append(canvas);
 
-  const scene = new THREE.Scene();
-  scene.background = new THREE.Color(BACKGROUND);
-  scene.add(new THREE.HemisphereLight(0xffffff, 0x8a8f96, 2.2));
-  const sun = new THREE.DirectionalLight(0xffffff, 2.2);
-  sun.position.set(2, 4, 3);
-  scene.add(sun);
+  const scene = litScene(THREE);
 
   // URDF is Z-up, three is Y-up: a quarter turn about X stands the robot up.
   robot.rotation.x = -Math.PI / 2;

@@ -9,7 +9,6 @@
 const NO_3D = "Your browser cannot run this here: it needs WebGL 2 and WebAssembly, and one "
   + "of them is turned off or not supported.";
 const CONVERT = "sw2sim convert YOUR_PACKAGE -o FOLDER";
-const BACKGROUND = 0xf5f5f5;
 const MESH = 7;
 
 function part(section, name) {
@@ -101,7 +100,7 @@ function shapeGeometry(THREE, shape) {
   }
 }
 
-function buildScene(THREE, OrbitControls, fitCamera, section, shapes) {
+function buildScene(THREE, OrbitControls, { fitCamera, litScene }, section, shapes) {
   const renderer = new THREE.WebGLRenderer({ antialias: true });
   renderer.setPixelRatio(Math.min(window.devicePixelRatio || 1, 2));
   const canvas = renderer.domElement;
@@ -110,12 +109,7 @@ function buildScene(THREE, OrbitControls, fitCamera, section, shapes) {
   canvas.setAttribute("aria-label", "Your model, simulated. Drag, or use the arrow keys, to move the view.");
   const stage = part(section, "stage");
   stage.replaceChildren(canvas);
-  const scene = new THREE.Scene();
-  scene.background = new THREE.Color(BACKGROUND);
-  scene.add(new THREE.HemisphereLight(0xffffff, 0x8a8f96, 2.2));
-  const sun = new THREE.DirectionalLight(0xffffff, 2.2);
-  sun.position.set(2, 4, 3);
-  scene.add(sun);
+  const scene = litScene(THREE);
   const world = new THREE.Group();   // MuJoCo's z-up world in three's y-up one
   world.rotation.x = -Math.PI / 2;
   scene.add(world);
@@ -228,10 +222,10 @@ function simulate(section, files, scene) {
       say(section, `Downloading MuJoCo: ${(message.loaded / 1e6).toFixed(1)} of `
         + `${(message.total / 1e6).toFixed(1)} MB`);
     } else if (message.type === "ready") {
-      const [THREE, { fitCamera }] = await Promise.all([import(section.dataset.libraries),
+      const [THREE, viewer] = await Promise.all([import(section.dataset.libraries),
         import("./model-viewer.js")]);
       part(section, "view").hidden = false;
-      drawn = buildScene(THREE, THREE.OrbitControls, fitCamera, section, message.geoms);
+      drawn = buildScene(THREE, THREE.OrbitControls, viewer, section, message.geoms);
       drawn.resize();
       buildSliders(section, message.lesson.sliders,
         (name, value) => worker.postMessage({ type: "set", name, value }));
