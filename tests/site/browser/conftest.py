@@ -194,13 +194,15 @@ class BrowserPage:
         self._visit = Visit("")
         # A request belongs to the document that made it: one the last page started just
         # before the next visit (an image a viewport change asked for) and that the
-        # navigation then aborted is not the new page's failure.
+        # navigation then aborted is not the new page's failure. The old document lives,
+        # and can still ask for things, until the new one commits (framenavigated).
         self._document_visit = self._visit
         self._owner: dict = {}
         self._pending: set = set()
         page.on("console", self._on_console)
         page.on("pageerror", lambda error: self._visit.page_errors.append(str(error)))
         page.on("request", self._on_request)
+        page.on("framenavigated", self._on_frame_navigated)
         page.on("requestfailed", self._on_request_failed)
         page.on("requestfinished", self._on_request_finished)
         page.on("response", self._on_response)
@@ -238,10 +240,13 @@ class BrowserPage:
             text = f"{message.text} ({where})" if where else message.text
             self._visit.console_errors.append(text)
 
-    def _on_request(self, request) -> None:
-        if request.is_navigation_request() and request.frame == self.page.main_frame:
+    def _on_frame_navigated(self, frame) -> None:
+        if frame == self.page.main_frame:
             self._document_visit = self._visit
-        self._owner[request] = self._document_visit
+
+    def _on_request(self, request) -> None:
+        main_document = request.is_navigation_request() and request.frame == self.page.main_frame
+        self._owner[request] = self._visit if main_document else self._document_visit
         if urlsplit(request.url).scheme in ("http", "https", "ws", "wss"):
             self._pending.add(request)
             if not self.site.is_local(request.url):
