@@ -57,6 +57,9 @@ from .schedule import SLACK, Schedule
 
 CLOCK_HZ = 100.0          # /clock messages per simulated (and at most per wall) second
 STATE_HZ = 50.0           # controller state messages per simulated second
+QUEUE = 500               # messages a publisher holds for a slow reader: a wall second of
+                          # controller states at --realtime 10, so a busy machine's pause
+                          # loses none (rospy drops the oldest past it)
 POSITION, VELOCITY, EFFORT = hardware.POSITION, hardware.VELOCITY, hardware.EFFORT
 JOINT_STATE = "joint_state_controller/JointStateController"
 
@@ -221,7 +224,7 @@ class World:
                                plugin=True)
         # its Load sets last_update_time_ to the time: the first message one period later
         publisher.schedule = Schedule(self._period(publisher), self.time, 1)
-        publisher.publishers = (self.rospy.Publisher(topic, JointState, queue_size=10),)
+        publisher.publishers = (self.rospy.Publisher(topic, JointState, queue_size=QUEUE),)
         self.controllers[publisher.name] = publisher
 
     def load(self, name: str) -> bool:
@@ -272,7 +275,7 @@ class World:
         topic = f"{self.namespace}/{c.name}"
         if c.kind == JOINT_STATE:
             c.publishers = (rospy.Publisher(f"{self.namespace}/joint_states", JointState,
-                                            queue_size=10),)
+                                            queue_size=QUEUE),)
         else:
             with self.lock:
                 c.actuator = self._actuator(c)
@@ -280,7 +283,7 @@ class World:
                 c.command = float(self.data.qpos[self.model.jnt_qposadr[j]]) \
                     if c.kind == POSITION else 0.0
             c.publishers = (rospy.Publisher(f"{topic}/state", JointControllerState,
-                                            queue_size=10),)
+                                            queue_size=QUEUE),)
 
             def command(message, controller=c):
                 controller.command = float(message.data)
