@@ -25,7 +25,8 @@ from .freshness import Fingerprint, cores  # noqa: F401  (tools/benchmark.py imp
 # freshness, which is never run as __main__: under `python -m course.media` this module
 # is, and a class of its own would not be the one the figures' code raises.
 from .freshness import Unavailable
-from .phone import phone_outputs, phone_paths
+from .phone import phone_paths
+from .sharp import sharp_paths
 from .practices import PRACTICES, ROOT
 
 MANIFEST = ROOT / "media" / "manifest.json"
@@ -45,7 +46,7 @@ class Figure:
     make: Callable[[Path], None]     # writes the figure to the path it is given
     inputs: list[str] = field(default_factory=list)  # files or folders it reads, from the root
     caption: str = ""
-    phone: bool = False              # `make` also writes the phone variant, phone_paths(path)
+    phone: bool = False              # `make` also writes its variants, variant_paths(path)
 
     @property
     def path(self) -> Path:
@@ -53,8 +54,9 @@ class Figure:
 
     @property
     def outputs(self) -> list[str]:
-        """Every file the figure's code writes: its own, then its phone variant's."""
-        return [self.output, *(phone_outputs(self.output) if self.phone else [])]
+        """Every file the figure's code writes: its own, then its variants'."""
+        return [self.output, *([p.as_posix() for p in variant_paths(self.output)]
+                               if self.phone else [])]
 
     def input_hash(self) -> str:
         module = Path(sys.modules[self.make.__module__].__file__)
@@ -63,6 +65,12 @@ class Figure:
                                           leave_out=[MODULE])
         return (Fingerprint().files({*listed, *code}, ROOT).libraries(RENDERERS)
                 .text(self.make.__qualname__).hexdigest())
+
+
+def variant_paths(path: str | Path) -> list[Path]:
+    """The files a figure with a phone variant writes beside its own: a plot's sharp file
+    (course/sharp.py), then the phone variant's (course/phone.py)."""
+    return [*sharp_paths(path), *phone_paths(path)]
 
 
 def _files(inputs: list[str]) -> list[Path]:
@@ -93,20 +101,20 @@ def make_figure(output: str, path: str | Path) -> float | str:
     start = time.perf_counter()
     for fig in all_figures():
         if fig.output == output:
-            phones = phone_paths(path)
-            for phone in phones:
-                phone.unlink(missing_ok=True)
+            variants = variant_paths(path)
+            for variant in variants:
+                variant.unlink(missing_ok=True)
             try:
                 fig.make(Path(path))
             except Unavailable as exc:
                 return str(exc)
-            for phone in phones:
-                if phone.is_file() != fig.phone:
+            for variant in variants:
+                if variant.is_file() != fig.phone:
                     where = sys.modules[fig.make.__module__].__file__
                     raise RuntimeError(
-                        f"{output}: its code {'wrote' if phone.is_file() else 'did not write'} a phone "
-                        f"variant ({phone.name}) but its Figure says phone={fig.phone}: in {where}, "
-                        f"give it phone={phone.is_file()}")
+                        f"{output}: its code {'wrote' if variant.is_file() else 'did not write'} "
+                        f"{variant.name} but its Figure says phone={fig.phone}: in {where}, "
+                        f"give it phone={variant.is_file()}")
             return time.perf_counter() - start
     raise KeyError(f"no figure makes {output}")
 

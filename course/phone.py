@@ -47,8 +47,3 @@ def phone_paths(path: str | Path) -> list[Path]:
     (a PNG) its file for screens of 3 pixels to the CSS pixel."""
     path = Path(path)
     return [phone_path(path), *([dense_path(path)] if path.suffix == ".png" else [])]
-
-
-def phone_outputs(output: str) -> list[str]:
-    """The phone variant's output paths (from the repository root) of the figure `output`."""
-    return [p.as_posix() for p in phone_paths(output)]

@@ -1,7 +1,8 @@
 """One look for every plot on the site, and text that stays readable where it is shown.
 
 The pages show a figure at most SHOWN_PX wide (the text column at desktop width), and at
-its own width when it is narrower. `save` sets every text of a plot at least large enough
+its own width when it is narrower, and beside it a sharp file for screens of 2 device
+pixels to the CSS pixel (course/sharp.py). `save` sets every text of a plot at least large enough
 to be MIN_TEXT_PX high there, whatever the figure's width, and records the smallest text
 it drew, in pixels of the image, in the PNG (TEXT_KEY), where tests/site/browser measure
 it at the width the page shows the picture.
@@ -23,6 +24,7 @@ import numpy as np
 
 from . import phone
 from .phone import dense_path, phone_path
+from .sharp import sharp_path, sharp_pixels
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
@@ -92,7 +94,7 @@ def variants(path: str | Path, nrows: int = 1, ncols: int = 1, *, figsize: tuple
     path = Path(path)
     fig, axes = figure(nrows, ncols, figsize=figsize, **kwargs)
     yield fig, axes, False
-    save(fig, path)
+    save(fig, path, sharp=sharp_path(path))
     fig, axes = phone_figure(nrows, ncols, figsize=figsize, phone_figsize=phone_figsize,
                              phone_grid=phone_grid, **kwargs)
     yield fig, axes, True
@@ -164,11 +166,13 @@ def _share(axes: np.ndarray, which: str, how) -> None:
                 axes[r, c].tick_params(axis="x", labelbottom=False)
 
 
-def save(fig, path: str | Path, layout: Layout = DESKTOP, dense: str | Path | None = None) -> None:
+def save(fig, path: str | Path, layout: Layout = DESKTOP, dense: str | Path | None = None,
+         sharp: str | Path | None = None) -> None:
     """Raise any text too small for where the figure is shown (`layout`), then save and
     close. The only metadata is the smallest text's size, so identical plots give
     identical files. With `dense` (a phone variant), the figure is saved PHONE_PIXELS[0]
-    wide at `path` and PHONE_PIXELS[1] wide at `dense`."""
+    wide at `path` and PHONE_PIXELS[1] wide at `dense`; with `sharp`, also
+    sharp_pixels(its width) wide at `sharp`, in 256 colours as the phone variants."""
     with plt.rc_context(STYLE):
         dpi = plt.rcParams["savefig.dpi"]
         width = fig.get_figwidth() * dpi
@@ -183,14 +187,19 @@ def save(fig, path: str | Path, layout: Layout = DESKTOP, dense: str | Path | No
                 text.set_fontsize(least)
         fig.canvas.draw()
         points = min((t.get_fontsize() for t in _texts(fig)), default=0.0)
-        files = [(path, dpi)] if dense is None else \
-            [(file, pixels / fig.get_figwidth()) for file, pixels in zip((path, dense), PHONE_PIXELS)]
-        for file, file_dpi in files:
+        if dense is None:   # (file, dpi, in 256 colours)
+            files = [(path, dpi, False)]
+            if sharp is not None:
+                files.append((sharp, sharp_pixels(width) / fig.get_figwidth(), True))
+        else:
+            files = [(file, pixels / fig.get_figwidth(), True)
+                     for file, pixels in zip((path, dense), PHONE_PIXELS)]
+        for file, file_dpi, paletted in files:
             text = {TEXT_KEY: f"{points * file_dpi / 72.0:.2f}"}
-            if dense is None:
-                fig.savefig(file, dpi=file_dpi, metadata={"Software": None, **text})
-            else:
+            if paletted:
                 _save_paletted(fig, file, file_dpi, text)
+            else:
+                fig.savefig(file, dpi=file_dpi, metadata={"Software": None, **text})
     plt.close(fig)
 
 

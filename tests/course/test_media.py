@@ -16,9 +16,10 @@ import pytest
 from parallel_jobs import selected, workers
 from PIL import Image
 
-from course.media import all_figures, is_current, make_figure, read_manifest
+from course.media import all_figures, is_current, make_figure, read_manifest, variant_paths
+from course.phone import DENSE_SUFFIX
 from course.phone import SUFFIX as PHONE_SUFFIX
-from course.phone import DENSE_SUFFIX, phone_paths
+from course.sharp import SUFFIX as SHARP_SUFFIX
 from repository import ROOT
 
 FIGURES = all_figures()
@@ -103,8 +104,8 @@ def test_figure_matches_what_its_code_makes(fig, made, current):
     result = job.result()  # re-raises whatever the figure's code raised
     if isinstance(result, str):   # a program it needs is not installed here (RViz, say)
         pytest.skip(f"{fig.output} cannot be made here: {result}")
-    # the figure, then its phone variant if it has one
-    for output, made_now in zip(fig.outputs, (fresh, *phone_paths(fresh))):
+    # the figure, then its variants if it has them
+    for output, made_now in zip(fig.outputs, (fresh, *variant_paths(fresh))):
         committed = ROOT / output
         if committed.suffix == ".svg":
             assert made_now.read_text() == committed.read_text(), f"{output} differs; run `make media`"
@@ -116,11 +117,13 @@ def test_figure_matches_what_its_code_makes(fig, made, current):
         assert rms <= PNG_RMS_TOLERANCE, f"{output}: RMS difference {rms:.3f}; run `make media`"
 
 
-def test_every_phone_variant_is_made_by_the_figure_it_belongs_to():
-    """media/ holds a phone variant (course/phone.py) for exactly the figures whose code
-    makes one: none left over from a figure that no longer has one."""
+def test_every_variant_is_made_by_the_figure_it_belongs_to():
+    """media/ holds a phone variant (course/phone.py) and a plot's sharp file
+    (course/sharp.py) for exactly the figures whose code makes them: none left over from a
+    figure that no longer has one."""
     made = {output for fig in FIGURES for output in fig.outputs[1:]}
-    on_disk = {p.relative_to(ROOT).as_posix() for pattern in (f"*{PHONE_SUFFIX}.*", f"*{PHONE_SUFFIX}{DENSE_SUFFIX}.*")
+    on_disk = {p.relative_to(ROOT).as_posix()
+               for pattern in (f"*{PHONE_SUFFIX}.*", f"*{PHONE_SUFFIX}{DENSE_SUFFIX}.*", f"*{SHARP_SUFFIX}.png")
                for p in (ROOT / "media").rglob(pattern)}
     assert on_disk == made, (f"left over: {sorted(on_disk - made)}; "
                              f"missing (run `make media`): {sorted(made - on_disk)}")

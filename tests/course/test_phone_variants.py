@@ -1,6 +1,7 @@
 """A figure's phone variant (course/phone.py) is drawn by the same code as the figure:
 `plotting.variants` gives the code its axes twice, laid out for the page and for a phone;
-a drawing too wide for a phone's column gets its views one above the other, smaller if
+a plot also gets a sharp file for 2× screens (course/sharp.py); a drawing too wide for a
+phone's column gets its views one above the other, smaller if
 they must be, the lettering as large as ever (course/drawing/narrow.py)."""
 
 import re
@@ -12,6 +13,7 @@ from PIL import Image
 from course import media, phone, plotting
 from course.drawing import narrow, part_drawing_svg
 from course.practices.practice_5 import design as practice_5
+from course.sharp import COLUMN_PX, sharp_path
 
 
 def test_a_plot_is_drawn_twice_and_its_phone_variant_reads_9_px_in_a_phones_column_at_2x_and_3x(tmp_path):
@@ -33,6 +35,13 @@ def test_a_plot_is_drawn_twice_and_its_phone_variant_reads_9_px_in_a_phones_colu
     assert min(shown) >= phone.MIN_TEXT_PX - 0.01
     assert shown[0] == pytest.approx(shown[1], abs=0.01), "the same lettering at either density"
     assert small.mode == dense.mode == "P", "256 colours"
+    sharp = Image.open(sharp_path(path))
+    assert sharp.width == 2 * min(desktop.width, COLUMN_PX) and sharp.mode == "P", \
+        "the desktop plot for 2× screens, as wide as the widest column shows it"
+    assert abs(sharp.height / sharp.width - desktop.height / desktop.width) < 0.002, "the same picture"
+    assert float(sharp.info[plotting.TEXT_KEY]) / sharp.width == \
+        pytest.approx(float(desktop.info[plotting.TEXT_KEY]) / desktop.width, abs=0.0001), \
+        "the same lettering"
 
 
 def test_on_a_phone_the_columns_of_panels_go_one_above_the_other():
@@ -169,5 +178,6 @@ def test_a_figure_whose_code_and_declaration_disagree_about_its_phone_variant_is
     with pytest.raises(RuntimeError, match="give it phone=False"):
         media.make_figure("media/x.svg", tmp_path / "x.svg")
     assert media.Figure("media/x.png", with_variant, phone=True).outputs == \
-        ["media/x.png", "media/x-phone.png", "media/x-phone-3x.png"], "a plot's phone variant is two files"
+        ["media/x.png", "media/x-2x.png", "media/x-phone.png", "media/x-phone-3x.png"], \
+        "a plot's sharp file, and its phone variant in two files"
     assert media.Figure("media/x.svg", with_variant, phone=True).outputs == ["media/x.svg", "media/x-phone.svg"]
