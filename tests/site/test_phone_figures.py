@@ -1,9 +1,10 @@
 """_plugins/phone_figures.rb: a figure with a phone variant (course/phone.py) reaches the
 page as a <picture> whose <source> offers the variant to narrow windows, a plot's in its
 two files (for screens of 2 and 3 pixels to the CSS pixel) by their widths; the <img>
-keeps its alt text, its own file and size. Checked on a tiny site published under a
-sub-path, as the Pages workflow builds it, and on the real site (every variant is
-offered)."""
+keeps its alt text, its own file and size. _plugins/sharp_images.rb: a plot's <img> offers
+its sharp file (course/sharp.py) to screens of 2 pixels to the CSS pixel. Checked on a
+tiny site published under a sub-path, as the Pages workflow builds it, and on the real
+site (every variant and every sharp file is offered)."""
 
 from __future__ import annotations
 
@@ -29,15 +30,18 @@ permalink: /figures/
 ![A drawing with a phone variant](/media/drawing.svg)
 
 ![A photo without one](/media/photo.png)
+
+![A plot wider than the column, with its sharp file](/media/wide.png)
 """
 BASE = "/course"
 
 
 @pytest.fixture(scope="module")
 def tiny(bundle, tmp_path_factory) -> str:
-    """The page, built under BASE with plot.png (1040 × 546), plot-phone.png (720 × 1080)
-    and plot-phone-3x.png (1080 × 1620), drawing.svg and drawing-phone.svg, and photo.png:
-    its HTML."""
+    """The page, built under BASE with plot.png (1040 × 546), its sharp plot-2x.png,
+    plot-phone.png (720 × 1080) and plot-phone-3x.png (1080 × 1620), drawing.svg and
+    drawing-phone.svg, photo.png, and wide.png (1560 × 598) with its sharp file twice the
+    widest column (2016 px): its HTML."""
     source = tmp_path_factory.mktemp("phone-src")
     for name in SITE_MACHINERY:
         copy = shutil.copytree if (ROOT / name).is_dir() else shutil.copy2
@@ -46,8 +50,10 @@ def tiny(bundle, tmp_path_factory) -> str:
     (source / "_pages").mkdir()
     (source / "_pages" / "figures.md").write_text(PAGE, encoding="utf-8")
     (source / "media").mkdir()
-    for name, size in (("plot.png", (1040, 546)), ("plot-phone.png", (720, 1080)),
-                       ("plot-phone-3x.png", (1080, 1620)), ("photo.png", (960, 600))):
+    for name, size in (("plot.png", (1040, 546)), ("plot-2x.png", (2080, 1092)),
+                       ("plot-phone.png", (720, 1080)), ("plot-phone-3x.png", (1080, 1620)),
+                       ("photo.png", (960, 600)), ("wide.png", (1560, 598)),
+                       ("wide-2x.png", (2016, 773))):
         Image.new("RGB", size, "white").save(source / "media" / name)
     for name, width in (("drawing.svg", 180), ("drawing-phone.svg", 100)):
         (source / "media" / name).write_text(
@@ -96,3 +102,24 @@ def test_the_site_offers_every_phone_variant_on_a_page(whole_site):  # noqa: F81
                 for p in (ROOT / "media").rglob(pattern)}
     assert len(variants) >= 25 and any(v.endswith("-3x.png") for v in variants)
     assert offered == variants, f"not offered: {sorted(variants - offered)}"
+
+
+def test_a_plot_offers_its_sharp_file_by_its_density(tiny):
+    """The <img> offers the sharp file at twice the density, or at what the widest column
+    makes of it (2016 / 1560), and keeps its src and size; the photo offers nothing."""
+    img = re.search(r'<img\b[^>]*src="[^"]*/plot.png"[^>]*>', tiny)[0]
+    assert f'srcset="{BASE}/media/plot.png 1x, {BASE}/media/plot-2x.png 2x"' in img, img
+    assert 'width="1040" height="546"' in img
+    wide = re.search(r'<img\b[^>]*src="[^"]*/wide.png"[^>]*>', tiny)[0]
+    assert f'srcset="{BASE}/media/wide.png 1x, {BASE}/media/wide-2x.png 1.292x"' in wide, wide
+    photo = re.search(r'<img\b[^>]*src="[^"]*/photo.png"[^>]*>', tiny)[0]
+    assert "srcset" not in photo
+
+
+def test_the_site_offers_every_sharp_file(whole_site):  # noqa: F811
+    offered = {candidate.split()[0].lstrip("/") for page in whole_site.rglob("*.html")
+               for srcset in re.findall(r'<img [^>]*srcset="([^"]+)"', page.read_text(encoding="utf-8"))
+               for candidate in srcset.split(",")}
+    sharp = {p.relative_to(ROOT).as_posix() for p in (ROOT / "media").rglob("*-2x.png")}
+    assert len(sharp) >= 15
+    assert sharp <= offered, f"not offered: {sorted(sharp - offered)}"

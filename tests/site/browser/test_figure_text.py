@@ -27,6 +27,7 @@ from course.plotting import TEXT_KEY
 
 LAPTOP = {"width": 1366, "height": 900}
 READABLE_PX = 10.0
+DESKTOP_DENSITY = 2.0
 PHONES = [{"width": 360, "height": 780}, {"width": 390, "height": 844}]
 READABLE_ON_A_PHONE_PX = 9.0
 DRAWING_ON_A_PHONE_PX = 11.0   # course/phone.py DRAWING_MIN_TEXT_PX
@@ -41,6 +42,7 @@ FIGURES = """async () => {
     images.forEach(img => { img.loading = 'eager'; });
     await Promise.all(images.map(img => img.decode().catch(() => null)));
     return images.map(img => ({src: img.getAttribute('src'), file: new URL(img.currentSrc).pathname,
+                               srcset: img.getAttribute('srcset'),
                                shown: img.getBoundingClientRect().width}));
 }"""
 
@@ -106,9 +108,12 @@ def pages_with_figures(site) -> list[str]:
 
 
 def test_figure_text_is_readable_at_the_page_width(browser_page, site):
+    """On a laptop every figure's smallest text is at least READABLE_PX high, and every plot
+    offers a file with at least DESKTOP_DENSITY image pixels to each CSS pixel it is shown
+    across, for 2× screens (course/sharp.py)."""
     page = browser_page.page
     page.set_viewport_size(LAPTOP)
-    measured, small = {"svg": 0, "plot": 0}, []
+    measured, small, soft = {"svg": 0, "plot": 0}, [], []
     try:
         for path in pages_with_figures(site):
             browser_page.visit(path)
@@ -121,10 +126,17 @@ def test_figure_text_is_readable_at_the_page_width(browser_page, site):
                 if px < READABLE_PX:
                     small.append(f"{path}: {figure['file']} shown {figure['shown']:.0f} px wide: "
                                  f"smallest text {px:.1f} px")
+                if kind == "plot":
+                    width = max(Image.open(site.root / candidate.split()[0].lstrip("/")).width
+                                for candidate in (figure["srcset"] or figure["file"]).split(","))
+                    if width < DESKTOP_DENSITY * figure["shown"]:
+                        soft.append(f"{path}: {figure['file']} shown {figure['shown']:.0f} px "
+                                    f"wide: its sharpest file is {width} px")
     finally:
         page.set_viewport_size({"width": 1280, "height": 800})
     assert measured["svg"] >= 20 and measured["plot"] >= 15, measured
     assert not small, "\n".join(small)
+    assert not soft, "\n".join(soft)
 
 
 def is_drawing(site, figure) -> bool:
@@ -187,6 +199,30 @@ def test_a_phone_fetches_the_plot_file_its_screen_needs(browser, site):
         finally:
             context.close()
     assert shown == {1: {".png"}, 2: {".png"}, 3: {"-3x.png"}}, shown
+
+
+def test_a_laptop_fetches_the_plot_file_its_screen_needs(browser, site):
+    """On a laptop with 1 device pixel to the CSS pixel a plot shows its own file; with 2,
+    its sharp one (course/sharp.py), at least twice as wide as it is shown, in the same
+    place on the page."""
+    path = "/practice-3/exporting/"
+    shown = {}
+    for density in (1, 2):
+        context = browser.new_context(viewport=LAPTOP, device_scale_factor=density)
+        try:
+            page = context.new_page()
+            page.goto(site.url(path))
+            plots = [f for f in page.evaluate(FIGURES) if f["src"].endswith(".png") and f["srcset"]]
+            assert plots, f"{path}: no plot offers a sharp file"
+            shown[density] = {(f["src"], round(f["shown"])): f["file"] for f in plots}
+            for figure in plots:
+                width = Image.open(site.root / figure["file"].lstrip("/")).width
+                assert width >= density * figure["shown"], f"{figure['file']}: {width} px for {density} × {figure['shown']:.0f}"
+        finally:
+            context.close()
+    assert shown[1].keys() == shown[2].keys(), "the same plots, as wide"
+    assert all(not file.endswith("-2x.png") for file in shown[1].values()), shown[1]
+    assert all(file.endswith("-2x.png") for file in shown[2].values()), shown[2]
 
 
 def test_each_drawing_links_its_whole_sheet(site):

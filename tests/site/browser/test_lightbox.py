@@ -77,7 +77,7 @@ ENLARGED = """() => {
     const dialog = document.querySelector('dialog.lightbox');
     const image = dialog.querySelector('.lightbox-image');
     return {open: dialog.open, file: image.src && new URL(image.src).pathname,
-            width: image.getBoundingClientRect().width, natural: image.naturalWidth,
+            offers: image.getAttribute('srcset'), width: image.getBoundingClientRect().width, natural: image.naturalWidth,
             scrollWidth: dialog.scrollWidth, clientWidth: dialog.clientWidth};
 }"""
 
@@ -120,6 +120,8 @@ def test_from_the_keyboard_a_plot_opens_enlarged_and_escape_gives_focus_back(bro
         page.wait_for_function("() => document.querySelector('.lightbox-image').complete")
         enlarged = page.evaluate(ENLARGED)
         assert enlarged["open"] and enlarged["file"] == PLOT, enlarged
+        assert PLOT.replace(".png", "-2x.png") in (enlarged["offers"] or ""), \
+            "the enlarged plot offers its sharp file to a 2× screen, as the page does"
         assert enlarged["width"] <= LAPTOP["width"], "within the window"
         assert page.evaluate("() => document.activeElement.className") == "lightbox-close"
         page.keyboard.press("Escape")
