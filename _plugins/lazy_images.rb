@@ -37,6 +37,13 @@ module Sw2simSite
       File.join(site_root, path)
     end
 
+    # The address (or file) `src` with `suffix` before its extension, keeping any ?query
+    # or #anchor: the name of a variant kept beside a figure (x.png, x-2x.png).
+    def beside(src, suffix)
+      path, rest = src.split(/(?=[?#])/, 2)
+      path.sub(/(\.\w+)\z/, "#{suffix}\\1") + rest.to_s
+    end
+
     def size_of(file)
       return nil unless file && File.file?(file)
 

@@ -68,19 +68,16 @@ module Sw2simSite
 
     # The address (or file) of the dense file beside a phone variant's PNG (nil for an SVG).
     def dense_variant(phone)
-      path, rest = phone.split(/(?=[?#])/, 2)
-      return nil unless path =~ /\.png\z/i
-
-      path.sub(/\.png\z/i, "#{DENSE_SUFFIX}.png") + rest.to_s
+      phone.split(/[?#]/).first =~ /\.png\z/i ? LazyImages.beside(phone, DENSE_SUFFIX) : nil
     end
 
     # The phone variant's address of a figure under /media/ (nil for any other image).
     def phone_variant(src)
-      path, rest = src.split(/(?=[?#])/, 2)
+      path = src.split(/[?#]/).first
       return nil unless path.include?("/media/") && path =~ /\.(png|svg)\z/i
       return nil if path.end_with?("#{SUFFIX}.png", "#{SUFFIX}.svg")
 
-      path.sub(/(\.\w+)\z/, "#{SUFFIX}\\1") + rest.to_s
+      LazyImages.beside(src, SUFFIX)
     end
   end
 end

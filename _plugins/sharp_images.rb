@@ -39,11 +39,11 @@ module Sw2simSite
     def sharp_variant(src)
       return nil unless src
 
-      path, rest = src.split(/(?=[?#])/, 2)
+      path = src.split(/[?#]/).first
       return nil unless path.include?("/media/") && path =~ /\.png\z/i
       return nil if path =~ /(-2x|-phone|-phone-3x)\.png\z/i
 
-      path.sub(/\.png\z/i, "#{SUFFIX}.png") + rest.to_s
+      LazyImages.beside(src, SUFFIX)
     end
   end
 end
