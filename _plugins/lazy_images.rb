@@ -77,10 +77,3 @@ module Sw2simSite
     end
   end
 end
-
-Jekyll::Hooks.register [:pages, :documents], :post_render do |page|
-  next unless page.output_ext == ".html"
-
-  site = page.site
-  page.output = Sw2simSite::LazyImages.mark(page.output, site.source, site.config["baseurl"])
-end

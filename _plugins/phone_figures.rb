@@ -81,12 +81,3 @@ module Sw2simSite
     end
   end
 end
-
-# After rendering, as lazy_images.rb: the src attributes carry the baseurl by then
-# (site_links.rb), and so does the phone variant's address made from them.
-Jekyll::Hooks.register [:pages, :documents], :post_render do |page|
-  next unless page.output_ext == ".html"
-
-  site = page.site
-  page.output = Sw2simSite::PhoneFigures.serve(page.output, site.source, site.config["baseurl"])
-end

@@ -47,13 +47,3 @@ module Sw2simSite
     end
   end
 end
-
-# After rendering, as lazy_images.rb and phone_figures.rb, in whichever order: each reads
-# only the <img>'s src, and none adds what another looks for. The src attributes carry the
-# baseurl by then.
-Jekyll::Hooks.register [:pages, :documents], :post_render do |page|
-  next unless page.output_ext == ".html"
-
-  site = page.site
-  page.output = Sw2simSite::SharpImages.offer(page.output, site.source, site.config["baseurl"])
-end
