@@ -37,14 +37,12 @@ module Sw2simSite
     # The column's width in those windows: the window less the margins, and from 60rem less
     # the sidebar too.
     COLUMN = "(max-width: 59.99rem) calc(100vw - 2rem), calc(100vw - 22rem)"
-    IMG = /<img\b[^>]*>/i.freeze
-    SRC = /\bsrc="([^"]+)"/i.freeze
 
     module_function
 
     def serve(html, site_root, baseurl)
-      html.gsub(IMG) do |tag|
-        src = tag[SRC, 1]
+      html.gsub(LazyImages::IMG) do |tag|
+        src = tag[LazyImages::SRC, 1]
         phone_src = src && phone_variant(src)
         file = phone_src && LazyImages.local_file(phone_src, site_root, baseurl)
         next tag unless file && File.file?(file)

@@ -15,14 +15,12 @@
 module Sw2simSite
   module SharpImages
     SUFFIX = "-2x"
-    IMG = /<img\b[^>]*>/i.freeze
-    SRC = /\bsrc="([^"]+)"/i.freeze
 
     module_function
 
     def offer(html, site_root, baseurl)
-      html.gsub(IMG) do |tag|
-        src = tag[SRC, 1]
+      html.gsub(LazyImages::IMG) do |tag|
+        src = tag[LazyImages::SRC, 1]
         next tag if tag =~ /\bsrcset=/i || !(sharp_src = sharp_variant(src))
 
         plain = LazyImages.size_of(LazyImages.local_file(src, site_root, baseurl))
