@@ -28,7 +28,6 @@ from manifold3d import Manifold
 
 from ..mesh_formats import stand_in
 from .geometry import closed_volume, hull_solid, merged_mesh
-from .trimeshes import obj_positions
 from .urdf import vector
 
 # m^3: a solid below this is left to MuJoCo, whose own limit (mjMINVAL) is 1e-15.
@@ -50,11 +49,11 @@ def hulls(ctx) -> dict[tuple[str, tuple[float, ...]], np.ndarray]:
                 continue
             key = (str(path.resolve()), tuple(float(s) for s in scale))
             if key not in found:
-                found[key] = _corners(ctx, shape, scale, obj=path.suffix.lower() == ".obj")
+                found[key] = _corners(ctx, shape, obj=path.suffix.lower() == ".obj")
     return {key: corners for key, corners in found.items() if corners is not None}
 
 
-def _corners(ctx, shape, scale, obj: bool) -> np.ndarray | None:
+def _corners(ctx, shape, obj: bool) -> np.ndarray | None:
     mesh = merged_mesh(ctx, shape)
     if mesh is None:
         return None
@@ -63,13 +62,12 @@ def _corners(ctx, shape, scale, obj: bool) -> np.ndarray | None:
         return None
     try:
         if obj:
-            # MuJoCo's hull takes every `v` line, also a corner no face uses (the check's
-            # reader, as trimesh, leaves those out)
-            data = ctx.mesh_content(shape)
-            positions = obj_positions(data) if isinstance(data, bytes) else None
-            if positions is None:
+            # MuJoCo's hull takes every `v` line, also a corner no face uses: the check's
+            # reader leaves those out of the vertices, as trimesh does, and keeps them aside
+            read = ctx.mesh(shape)   # scale applied, not merged
+            if read is None or read.loose is None:
                 return None
-            solid = Manifold.hull_points(positions * np.asarray(scale, dtype=np.float64))
+            solid = Manifold.hull_points(np.concatenate([read.vertices, read.loose]))
         else:
             solid = hull_solid(mesh)     # the collision checks' own
     except Exception:  # noqa: BLE001  (manifold3d refuses some inputs: MuJoCo reads the file)

@@ -36,14 +36,19 @@ def corners(points: np.ndarray) -> np.ndarray:
 
 class Mesh:
     """Vertices (n x 3 floats) and faces (m x 3 vertex indices), counter-clockwise seen from
-    outside for a closed mesh."""
+    outside for a closed mesh. `loose`: the file's points that no face uses (k x 3), which
+    the vertices leave out as trimesh does and MuJoCo's hull of the file takes in; None
+    where the reader cannot tell (only the OBJ reader here tells)."""
 
-    def __init__(self, vertices, faces):
+    def __init__(self, vertices, faces, loose=None):
         self.vertices = np.asarray(vertices, dtype=np.float64).reshape(-1, 3)
         self.faces = np.asarray(faces, dtype=np.int64).reshape(-1, 3)
+        self.loose = None if loose is None else \
+            np.asarray(loose, dtype=np.float64).reshape(-1, 3)
 
     def copy(self) -> "Mesh":
-        return Mesh(self.vertices.copy(), self.faces.copy())
+        return Mesh(self.vertices.copy(), self.faces.copy(),
+                    None if self.loose is None else self.loose.copy())
 
     @property
     def triangles(self) -> np.ndarray:
@@ -63,9 +68,13 @@ class Mesh:
     def apply_transform(self, matrix: np.ndarray) -> None:
         matrix = np.asarray(matrix, dtype=np.float64)
         self.vertices = self.vertices @ matrix[:3, :3].T + matrix[:3, 3]
+        if self.loose is not None:
+            self.loose = self.loose @ matrix[:3, :3].T + matrix[:3, 3]
 
     def apply_scale(self, scale) -> None:
         self.vertices = self.vertices * np.asarray(scale, dtype=np.float64)
+        if self.loose is not None:
+            self.loose = self.loose * np.asarray(scale, dtype=np.float64)
 
     def merge_vertices(self) -> None:
         """Make vertices that share their coordinates (to MERGE_DIGITS) one vertex."""
@@ -180,7 +189,9 @@ def _obj(data: bytes) -> Mesh:
     for column, limit in zip(refs.T[1:], limits[1:]):
         key, scale = key * limit + column, scale * limit
     combos, inverse = np.unique(key, return_inverse=True)
-    return Mesh(vertices[combos // scale], inverse.reshape(-1, 3))
+    used = np.zeros(len(vertices), dtype=bool)
+    used[combos // scale] = True
+    return Mesh(vertices[combos // scale], inverse.reshape(-1, 3), loose=vertices[~used])
 
 
 def _obj_positions(data: bytes) -> tuple[bytes, dict[bytes, int], np.ndarray]:
@@ -208,16 +219,6 @@ def _obj_positions(data: bytes) -> tuple[bytes, dict[bytes, int], np.ndarray]:
             or not np.isfinite(vertices).all():
         raise _NotSimple   # vertices with colours or weights, not-a-number
     return text, counts, vertices.reshape(-1, 3)
-
-
-def obj_positions(data: bytes) -> np.ndarray | None:
-    """Every `v` line's position of an OBJ, also a corner no face uses, which `read` leaves
-    out (as trimesh does) and MuJoCo keeps; None unless the file has the simple form `read`
-    reads itself."""
-    try:
-        return _obj_positions(data)[2]
-    except _NotSimple:
-        return None
 
 
 def _statements(text: bytes, key: bytes, count: int) -> bytes:

@@ -195,6 +195,25 @@ def test_a_mesh_s_box_is_numpy_s_min_and_max():
     assert np.array_equal(trimeshes.Mesh(np.zeros((0, 3)), np.zeros((0, 3))).extents, np.zeros(3))
 
 
+@pytest.mark.parametrize("faces", [b"f 1 2 4\n", b"f 1/1 2/2 4/1\nf 1/2 2/1 4/2\n",
+                                   b"f 1//1 2//1 4//1\n"])
+def test_an_obj_s_points_no_face_uses_are_kept_aside_through_scale_and_copy(faces):
+    """The OBJ reader leaves out of the vertices a `v` line no face uses, as trimesh does,
+    and keeps it in `loose` (MuJoCo's hull takes it in), whatever the corners' form."""
+    text = b"v 0 0 0\nv 1 0 0\nv 7 8 9\nv 0 1 0\nv -5 -6 -7\nvt 0 0\nvt 1 1\nvn 0 0 1\n" + faces
+    mesh = trimeshes._obj(text)
+    assert sorted(set(map(tuple, mesh.vertices))) == [(0, 0, 0), (0, 1, 0), (1, 0, 0)]
+    assert mesh.loose.tolist() == [[7, 8, 9], [-5, -6, -7]]
+    scaled = mesh.copy()
+    scaled.apply_scale([2, 1, 0.5])
+    assert scaled.loose.tolist() == [[14, 8, 4.5], [-10, -6, -3.5]]
+    assert mesh.loose.tolist() == [[7, 8, 9], [-5, -6, -7]]   # the copy's own
+    moved = mesh.copy()
+    moved.apply_transform(np.array([[1, 0, 0, 1], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1.0]]))
+    assert moved.loose[:, 0].tolist() == [8, -4]
+    assert trimeshes.Mesh(mesh.vertices, mesh.faces).copy().loose is None   # not known
+
+
 @pytest.mark.parametrize("text", [
     b"\nv 1 2 3\nv 4 5 6\n\nf 1 2 3\n",
     b"\n# made by hand\nmtllib a.mtl\nusemtl steel\no part\ng all\ns off\nvn 0 0 1\nvt 0 0\nf 1/1/1 2/2/1 3/3/1",
