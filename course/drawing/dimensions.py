@@ -13,7 +13,7 @@ from shapely.geometry import LineString
 
 from ..parts import Angle, Dimension, Part
 from .projection import VIEWS
-from .svg import DIM_TEXT, Arc, Line, Poly, Text, bbox, fmt, mm_text, text_width
+from .svg import DIM_TEXT, Arc, Circle, Line, Poly, Text, bbox, fmt, mm_text, text_width
 
 ARROW_LEN, ARROW_HALF = 3.0, 0.55  # filled arrowhead, about 20 degrees included angle
 EXT_GAP, EXT_OVER, TEXT_GAP = 1.0, 2.0, 1.0  # extension line: gap at the part, overshoot
@@ -199,23 +199,27 @@ def _angle_draft(dim: Angle, k: float) -> _DimDraft:
 
 
 def view_dimensions(dims: list[Dimension | Angle], k: float, centre: tuple[float, float],
-                    placed: list | None = None) -> list:
-    """All dimensions of one view, each text placed clear of the others' texts and lines.
+                    placed: list | None = None, drawn: list = ()) -> list:
+    """All dimensions of one view, each text placed clear of the others' texts and lines,
+    and of the part's own lines (`drawn`, the view's primitives) where it can be.
 
     Texts with one place (inside their dimension line) are placed first, then the others, each
-    at the first of its places clear of what is placed already, or failing that (a drawing
-    made small) the first clear of the texts placed already. When `placed` is a list, each
-    dimension is appended to it with the text it was given, as (dimension, Text): what the sheet
-    shows for it."""
+    at the first of its places clear of what is placed already and of the part, else clear of
+    what is placed already, or failing that (a drawing made small) the first clear of the
+    texts placed already. When `placed` is a list, each dimension is appended to it with the
+    text it was given, as (dimension, Text): what the sheet shows for it."""
     drafts = [_dimension_draft(d, k, centre) for d in dims]
     blockers = [LineString(seg) for dr in drafts for seg in dr.segments]
+    part = [g for g in map(_outline, drawn) if g is not None]
     texts: list = []
     chosen: dict[int, tuple] = {}
     for i in sorted(range(len(drafts)), key=lambda i: len(drafts[i].options) > 1):
         boxes = [shapely.box(*bbox([option[0]])) for option in drafts[i].options]
         clear = [o for o, box in zip(drafts[i].options, boxes) if not any(box.intersects(b) for b in blockers)]
+        off_part = [o for o, box in zip(drafts[i].options, boxes)
+                    if o in clear and not any(box.intersects(g) for g in part)]
         apart = [o for o, box in zip(drafts[i].options, boxes) if not any(box.intersects(b) for b in texts)]
-        chosen[i] = (clear or apart or drafts[i].options)[0]
+        chosen[i] = (off_part or clear or apart or drafts[i].options)[0]
         texts.append(shapely.box(*bbox([chosen[i][0]])).buffer(0.5))
         blockers.append(texts[-1])
     out = []
@@ -225,6 +229,20 @@ def view_dimensions(dims: list[Dimension | Angle], k: float, centre: tuple[float
             placed.append((dim, text))
         out += [*dr.lines, *([] if p is None else [Line(*p, *q)]), text]
     return out
+
+
+def _outline(prim):
+    """A drawn line of the part as a shapely line (a circle's rim, a polyline), or None for
+    what a text may cover (texts, arcs' insides, fills are not lines of the part)."""
+    if isinstance(prim, Line):
+        return LineString([(prim.x1, prim.y1), (prim.x2, prim.y2)])
+    if isinstance(prim, Circle):
+        return shapely.Point(prim.cx, prim.cy).buffer(prim.r).exterior
+    if isinstance(prim, Poly) and not prim.closed:
+        return LineString(prim.rings[0]) if len(prim.rings[0]) > 1 else None
+    if isinstance(prim, Poly):
+        return shapely.LinearRing(prim.rings[0]) if len(prim.rings[0]) > 2 else None
+    return None
 
 
 def _arrow(tip, direction, across) -> list:

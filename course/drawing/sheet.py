@@ -149,7 +149,8 @@ def _part_view(part: Part, solid: Solid, view: str, k: float, traced: ViewLines 
         prims = [outline, Line(k * h0 - c, -k * v0 + c, k * h1 + c, -k * v1 - c)]
     else:
         prims = view_prims(traced, proj, k)
-    prims += view_dimensions([d for d in part.dimensions if d.view == view], k, centre, placed)
+    prims += view_dimensions([d for d in part.dimensions if d.view == view], k, centre, placed,
+                             drawn=prims if traced is not None else ())
     return prims + view_label(prims, view.upper(), centre[0])
 
 

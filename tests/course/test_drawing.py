@@ -364,3 +364,30 @@ def test_every_joint_is_named_once_and_names_do_not_overlap(practice):
     spots = [(t.attrib.get("text-anchor"), float(t.attrib["y"])) for t in labels]
     for i, (side, y) in enumerate(spots):
         assert all(s != side or abs(y - y2) > 2.0 for s, y2 in spots[i + 1:]), (practice, spots)
+
+
+def test_a_dimension_text_with_room_beside_the_part_keeps_off_its_lines():
+    """A text that could go on either side of its dimension line goes where no line of the
+    part runs (the chassis's "Ø10 pin" sat across a fork's wall); with no such place it
+    keeps the place it had, clear of the other dimensions."""
+    import shapely
+
+    from course.drawing.dimensions import view_dimensions
+    from course.drawing.svg import Line, Text, bbox
+
+    short = Dimension("front", (0.0, 0.0, 0.0), (0.0, 0.0, 0.002), "v", 0.01, "Ø2 pin")
+
+    def text_of(drawn):
+        return next(p for p in view_dimensions([short], 1000.0, (0.0, 0.0), drawn=drawn)
+                    if isinstance(p, Text))
+
+    alone = text_of([])
+    box = shapely.box(*bbox([alone]))
+    x0, y0, x1, y1 = box.bounds
+    wall = Line((x0 + x1) / 2, y0 - 5, (x0 + x1) / 2, y1 + 5, "visible")   # through the text
+    moved = text_of([wall])
+    assert (moved.x, moved.y) != (alone.x, alone.y)
+    assert not shapely.box(*bbox([moved])).intersects(
+        shapely.LineString([(wall.x1, wall.y1), (wall.x2, wall.y2)]))
+    everywhere = [Line(-100, y, 100, y, "visible") for y in range(-100, 101, 1)]
+    assert text_of(everywhere) == alone
