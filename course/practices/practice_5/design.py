@@ -221,9 +221,9 @@ def steering_link() -> Part:
             Box(mm(bx, by, bz), mm(0, 0, h + bz / 2)),
         ],
         dimensions=[
-            Dimension("top", mm(bx / 2, -by / 2, h + bz), mm(bx / 2, by / 2, h + bz), "v", 0.02),
+            Dimension("top", mm(bx / 2, -by / 2, h + bz), mm(bx / 2, by / 2, h + bz), "v", 0.03),
             Dimension("top", mm(-bx / 2, by / 2, h + bz), mm(bx / 2, by / 2, h + bz), "h", 0.01),
-            Dimension("front", mm(-d / 2, 0, 0), mm(d / 2, 0, 0), "h", -0.01, f"Ø{d}"),
+            Dimension("front", mm(-d / 2, 0, 0), mm(d / 2, 0, 0), "h", -0.02, f"Ø{d}"),
             Dimension("front", mm(d / 2, 0, 0), mm(d / 2, 0, h), "v", 0.015),
             Dimension("front", mm(-bx / 2, 0, h), mm(-bx / 2, 0, h + bz), "v", -0.015),
         ],
