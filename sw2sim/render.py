@@ -19,7 +19,8 @@ def render(model: mujoco.MjModel, data: mujoco.MjData, *, width: int = 960, heig
 
     The camera looks at `lookat` (default: the model's centre) from `distance`
     (default: a little more than the model's extent). With `frame`, both are chosen so
-    that the robot as it stands fills the picture (`robot_view`).
+    that the robot as it stands fills the picture (`robot_view`). A picture larger than
+    the model's offscreen buffer (its <visual><global offwidth offheight>) grows the buffer.
     """
     mujoco.mj_forward(model, data)
     if frame and lookat is None and distance is None:
@@ -33,6 +34,8 @@ def render(model: mujoco.MjModel, data: mujoco.MjData, *, width: int = 960, heig
     opt.flags[mujoco.mjtVisFlag.mjVIS_JOINT] = show_joints
     if show_frames:
         opt.frame = mujoco.mjtFrame.mjFRAME_BODY
+    model.vis.global_.offwidth = max(model.vis.global_.offwidth, width)
+    model.vis.global_.offheight = max(model.vis.global_.offheight, height)
     with mujoco.Renderer(model, height, width) as renderer:
         renderer.update_scene(data, camera=cam, scene_option=opt)
         renderer.scene.flags[mujoco.mjtRndFlag.mjRND_SHADOW] = shadows

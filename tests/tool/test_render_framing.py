@@ -16,7 +16,7 @@ from sw2sim.cli import main
 from sw2sim.loader import load_package, world_fixed
 from sw2sim.render import render, robot_view
 from packages import copy_example, edit, urdf_of
-from repository import practice_numbers
+from repository import ROOT, practice_numbers
 
 
 def robot_box(image: np.ndarray, without: np.ndarray) -> tuple[int, int, int, int]:
@@ -101,3 +101,17 @@ def test_the_old_aim_cut_that_robot_off(tmp_path, lift):
         assert_framed(box, 320, 240)
     if lift < 0:
         assert box[1] == 0, box
+
+
+def test_a_picture_larger_than_the_model_s_offscreen_buffer_grows_the_buffer():
+    """render() is asked for more pixels than the model's <global offwidth offheight>
+    allow (MuJoCo's Renderer refuses that): the buffer grows to the picture, which comes
+    out at the size asked, with the robot in it."""
+    spec = load_package(ROOT / "examples" / "example_3")
+    spec.visual.global_.offwidth, spec.visual.global_.offheight = 320, 240
+    model = spec.compile()
+    data = mujoco.MjData(model)
+    image = render(model, data, width=640, height=400, shadows=False)
+    assert image.shape == (400, 640, 3)
+    assert (model.vis.global_.offwidth, model.vis.global_.offheight) == (640, 400)
+    assert image.std() > 5, "a picture, not a blank buffer"
