@@ -46,7 +46,8 @@ class Figure:
     make: Callable[[Path], None]     # writes the figure to the path it is given
     inputs: list[str] = field(default_factory=list)  # files or folders it reads, from the root
     caption: str = ""
-    phone: bool = False              # `make` also writes its variants, variant_paths(path)
+    phone: bool = False              # a plot or drawing: `make` also writes its phone variants
+    sharp: bool = False              # a render: `make` also writes its sharp file (course/sharp.py)
 
     @property
     def path(self) -> Path:
@@ -55,8 +56,13 @@ class Figure:
     @property
     def outputs(self) -> list[str]:
         """Every file the figure's code writes: its own, then its variants'."""
-        return [self.output, *([p.as_posix() for p in variant_paths(self.output)]
-                               if self.phone else [])]
+        return [self.output, *(p.as_posix() for p in self.variants(self.output))]
+
+    def variants(self, path: str | Path) -> list[Path]:
+        """The files the figure's code writes beside `path`: a plot's sharp file and phone
+        variants (phone), a render's sharp file (sharp)."""
+        return [*(sharp_paths(path) if self.phone or self.sharp else []),
+                *(phone_paths(path) if self.phone else [])]
 
     def input_hash(self) -> str:
         module = Path(sys.modules[self.make.__module__].__file__)
@@ -68,8 +74,8 @@ class Figure:
 
 
 def variant_paths(path: str | Path) -> list[Path]:
-    """The files a figure with a phone variant writes beside its own: a plot's sharp file
-    (course/sharp.py), then the phone variant's (course/phone.py)."""
+    """Every file a figure may write beside its own: a PNG's sharp file (course/sharp.py),
+    then the phone variant's (course/phone.py)."""
     return [*sharp_paths(path), *phone_paths(path)]
 
 
@@ -101,7 +107,7 @@ def make_figure(output: str, path: str | Path) -> float | str:
     start = time.perf_counter()
     for fig in all_figures():
         if fig.output == output:
-            variants = variant_paths(path)
+            variants, declared = variant_paths(path), fig.variants(path)
             for variant in variants:
                 variant.unlink(missing_ok=True)
             try:
@@ -109,12 +115,13 @@ def make_figure(output: str, path: str | Path) -> float | str:
             except Unavailable as exc:
                 return str(exc)
             for variant in variants:
-                if variant.is_file() != fig.phone:
+                if variant.is_file() != (variant in declared):
                     where = sys.modules[fig.make.__module__].__file__
+                    flag = "phone" if variant in phone_paths(path) or fig.phone else "sharp"
                     raise RuntimeError(
                         f"{output}: its code {'wrote' if variant.is_file() else 'did not write'} "
-                        f"{variant.name} but its Figure says phone={fig.phone}: in {where}, "
-                        f"give it phone={variant.is_file()}")
+                        f"{variant.name} but its Figure says {flag}={getattr(fig, flag)}: in "
+                        f"{where}, give it {flag}={variant.is_file()}")
             return time.perf_counter() - start
     raise KeyError(f"no figure makes {output}")
 

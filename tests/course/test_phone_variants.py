@@ -1,6 +1,6 @@
 """A figure's phone variant (course/phone.py) is drawn by the same code as the figure:
 `plotting.variants` gives the code its axes twice, laid out for the page and for a phone;
-a plot also gets a sharp file for 2× screens (course/sharp.py); a drawing too wide for a
+a plot (and a render) also gets a sharp file for 2× screens (course/sharp.py); a drawing too wide for a
 phone's column gets its views one above the other, smaller if
 they must be, the lettering as large as ever (course/drawing/narrow.py)."""
 
@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from course import media, phone, plotting
+from course import media, phone, plotting, sharp
 from course.drawing import narrow, part_drawing_svg
 from course.practices.practice_5 import design as practice_5
 from course.sharp import COLUMN_PX, sharp_path
@@ -181,3 +181,30 @@ def test_a_figure_whose_code_and_declaration_disagree_about_its_phone_variant_is
         ["media/x.png", "media/x-2x.png", "media/x-phone.png", "media/x-phone-3x.png"], \
         "a plot's sharp file, and its phone variant in two files"
     assert media.Figure("media/x.svg", with_variant, phone=True).outputs == ["media/x.svg", "media/x-phone.svg"]
+
+
+def test_a_render_declares_its_sharp_file_and_writes_it(tmp_path, monkeypatch):
+    """A render's code writes its sharp file (course/sharp.py save_render): twice as wide,
+    the same view, in 256 colours; a Figure that says sharp=True and writes none, or writes
+    one and does not say so, is refused."""
+    def picture(width, height):
+        image = np.zeros((height, width, 3), dtype=np.uint8)
+        image[:, : width // 2] = (200, 40, 40)   # the left half red at any size
+        return image
+
+    def render(path):
+        sharp.save_render(path, picture, 120, 80)
+
+    made = tmp_path / "x.png"
+    render(made)
+    plain, dense = Image.open(made), Image.open(sharp.sharp_path(made))
+    assert plain.size == (120, 80) and dense.size == (240, 160) and dense.mode == "P"
+    assert np.array_equal(np.asarray(dense.convert("RGB"))[::2, ::2], np.asarray(plain.convert("RGB")))
+    assert media.Figure("media/x.png", render, sharp=True).outputs == ["media/x.png", "media/x-2x.png"]
+    monkeypatch.setattr(media, "all_figures", lambda: [media.Figure("media/x.png", render)])
+    with pytest.raises(RuntimeError, match="give it sharp=True"):
+        media.make_figure("media/x.png", tmp_path / "y.png")
+    plain_only = lambda path: Image.fromarray(picture(120, 80)).save(path)  # noqa: E731
+    monkeypatch.setattr(media, "all_figures", lambda: [media.Figure("media/x.png", plain_only, sharp=True)])
+    with pytest.raises(RuntimeError, match="give it sharp=False"):
+        media.make_figure("media/x.png", tmp_path / "z.png")

@@ -8,7 +8,8 @@ from sw2sim import load_package
 from ...media import Figure
 from ...plotting import variants
 from ...rviz_picture import rviz_picture
-from sw2sim.render import render, save_png
+from sw2sim.render import render
+from ...sharp import save_render
 from .. import load_script
 from . import design
 from ..shared import assembly_drawing, drawing_figures, part_drawing
@@ -28,7 +29,8 @@ def pulses():
 def model_picture(path: Path) -> None:
     model = load_package(PACKAGE).compile()
     data = mujoco.MjData(model)
-    save_png(render(model, data, width=960, height=600, azimuth=135, elevation=-28), path)
+    save_render(path, lambda w, h: render(model, data, width=w, height=h, azimuth=135,
+                                          elevation=-28), 960, 600)
 
 
 def axes_picture(path: Path) -> None:
@@ -38,8 +40,9 @@ def axes_picture(path: Path) -> None:
     model.vis.scale.jointwidth = 0.25
     model.geom_rgba[:, 3] = np.where(model.geom_group == 1, 0.45, model.geom_rgba[:, 3])
     data = mujoco.MjData(model)
-    save_png(render(model, data, width=960, height=600, azimuth=150, elevation=-50,
-                    show_joints=True, shadows=False), path)
+    save_render(path, lambda w, h: render(model, data, width=w, height=h, azimuth=150,
+                                          elevation=-50, show_joints=True, shadows=False),
+                960, 600)
 
 
 def base_run(fixed_base: bool, duration: float, frames=()):
@@ -118,8 +121,8 @@ FIGURES = [
                       phone=True),
     *drawing_figures(MEDIA, "assembly", assembly_drawing, design.robot, DESIGN + ["course/exporter_format.py"], "Assembly",
                       phone=True),
-    Figure(f"{MEDIA}/model.png", model_picture, SIM, "The model in MuJoCo"),
-    Figure(f"{MEDIA}/joint_axes.png", axes_picture, SIM, "Joint axes"),
+    Figure(f"{MEDIA}/model.png", model_picture, SIM, "The model in MuJoCo", sharp=True),
+    Figure(f"{MEDIA}/joint_axes.png", axes_picture, SIM, "Joint axes", sharp=True),
     Figure(f"{MEDIA}/unlocked_base.png", unlocked_strip, SIM, "A base that is not locked", phone=True),
     Figure(f"{MEDIA}/base_drift.png", base_drift, SIM, "Locked and free base", phone=True),
     Figure(f"{MEDIA}/wheel_velocity.png", wheel_velocity, SIM, "Wheel speed under pulses", phone=True),

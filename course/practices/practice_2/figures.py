@@ -9,6 +9,7 @@ from ...media import Figure
 from ...plotting import variants
 from ...rviz_picture import rviz_picture
 from sw2sim.render import render, save_png
+from ...sharp import save_render
 from .. import load_script
 from . import design
 from ..shared import assembly_drawing, drawing_figures, part_drawing
@@ -31,7 +32,8 @@ def pulses():
 def model_picture(path: Path) -> None:
     model = load_package(PACKAGE).compile()
     data = mujoco.MjData(model)
-    save_png(render(model, data, width=960, height=600, azimuth=125, elevation=-35), path)
+    save_render(path, lambda w, h: render(model, data, width=w, height=h, azimuth=125,
+                                          elevation=-35), 960, 600)
 
 
 AXIS_COLOURS = {"front_left_joint": (0.80, 0.10, 0.10, 1), "front_right_joint": (0.10, 0.55, 0.15, 1),
@@ -62,8 +64,9 @@ def axes_picture(path: Path) -> None:
     model.vis.scale.jointlength = 2.0
     model.vis.scale.jointwidth = 0.2
     data = mujoco.MjData(model)
-    save_png(render(model, data, width=960, height=600, lookat=[0, 0, 0.15], distance=1.3,
-                    azimuth=90, elevation=-89, shadows=False, show_joints=True), path)
+    save_render(path, lambda w, h: render(model, data, width=w, height=h, lookat=[0, 0, 0.15],
+                                          distance=1.3, azimuth=90, elevation=-89,
+                                          shadows=False, show_joints=True), 960, 600)
 
 
 def wrong_axis_picture(path: Path) -> None:
@@ -235,8 +238,8 @@ FIGURES = [
                       phone=True),
     *drawing_figures(MEDIA, "assembly", assembly_drawing, design.robot, DESIGN + ["course/exporter_format.py"], "Assembly",
                       phone=True),
-    Figure(f"{MEDIA}/model.png", model_picture, SIM, "The model in MuJoCo"),
-    Figure(f"{MEDIA}/joint_axes.png", axes_picture, SIM, "Joint axes"),
+    Figure(f"{MEDIA}/model.png", model_picture, SIM, "The model in MuJoCo", sharp=True),
+    Figure(f"{MEDIA}/joint_axes.png", axes_picture, SIM, "Joint axes", sharp=True),
     Figure(f"{MEDIA}/wrong_axis.png", wrong_axis_picture, SIM + ["course/practices/practice_2/design.py"],
            "A reused axis", phone=True),
     Figure(f"{MEDIA}/unlocked_base.png", unlocked_picture, SIM + PULSE, "A base that is not locked"),

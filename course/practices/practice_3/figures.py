@@ -9,7 +9,8 @@ from sw2sim import load_package
 from ...media import Figure
 from ...plotting import variants
 from ...rviz_picture import rviz_picture
-from sw2sim.render import render, save_png
+from sw2sim.render import render
+from ...sharp import save_render
 from .. import load_script
 from . import design
 from ..shared import assembly_drawing, drawing_figures, part_drawing
@@ -37,8 +38,9 @@ def posed(model, angles):
 def model_picture(path: Path) -> None:
     model = load_package(PACKAGE).compile()
     data = posed(model, (0.35, -0.6))
-    save_png(render(model, data, width=960, height=600, lookat=[0.2, 0.06, 0.12], distance=0.78,
-                    azimuth=300, elevation=-35), path)
+    save_render(path, lambda w, h: render(model, data, width=w, height=h,
+                                          lookat=[0.2, 0.06, 0.12], distance=0.78,
+                                          azimuth=300, elevation=-35), 960, 600)
 
 
 def tip_positions(model, angles):
@@ -163,7 +165,7 @@ FIGURES = [
                       phone=True),
     *drawing_figures(MEDIA, "assembly", assembly_drawing, design.robot, DESIGN + ["course/exporter_format.py"], "Assembly",
                       phone=True),
-    Figure(f"{MEDIA}/model.png", model_picture, SIM, "The arm in MuJoCo"),
+    Figure(f"{MEDIA}/model.png", model_picture, SIM, "The arm in MuJoCo", sharp=True),
     Figure(f"{MEDIA}/reach.png", reach, SIM, "The arm's reach at its limits", phone=True),
     Figure(f"{MEDIA}/velocity_limit.png", velocity_limit, SIM, "Joint speed with and without the limit", phone=True),
     Figure(f"{MEDIA}/random_setpoints.png", setpoints, SIM, "Set point, position and error", phone=True),

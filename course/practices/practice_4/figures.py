@@ -10,7 +10,8 @@ from sw2sim import load_package
 from ...media import Figure
 from ...plotting import variants
 from ...rviz_picture import rviz_picture
-from sw2sim.render import render, save_png
+from sw2sim.render import render
+from ...sharp import save_render
 from .. import load_script
 from . import design
 from ..shared import assembly_drawing, drawing_figures, part_drawing
@@ -46,7 +47,7 @@ def picture(model, position, **view):
 
 def model_picture(path: Path) -> None:
     model = load_package(PACKAGE).compile()
-    save_png(picture(model, 1.2), path)
+    save_render(path, lambda w, h: picture(model, 1.2, width=w, height=h), 960, 520)
 
 
 def typo_package(folder: Path, upper: float = TYPO) -> Path:
@@ -222,7 +223,7 @@ FIGURES = [
                       phone=True),
     *drawing_figures(MEDIA, "assembly", assembly_drawing, design.robot, DESIGN + ["course/exporter_format.py"], "Assembly",
                       phone=True),
-    Figure(f"{MEDIA}/model.png", model_picture, SIM, "The bar and block in MuJoCo"),
+    Figure(f"{MEDIA}/model.png", model_picture, SIM, "The bar and block in MuJoCo", sharp=True),
     Figure(f"{MEDIA}/limit_typo.png", limit_typo, SIM, "A typo in the upper limit", phone=True),
     Figure(f"{MEDIA}/viewer_sliders.png", viewer_sliders, SIM, "The viewer's slider, sketched", phone=True),
     Figure(f"{MEDIA}/velocity_limited_move.png", velocity_limited_move, SIM, "A move set by the velocity limit", phone=True),

@@ -9,7 +9,8 @@ from sw2sim import load_package
 from ...media import Figure
 from ...plotting import variants
 from ...rviz_picture import rviz_picture
-from sw2sim.render import render, save_png
+from sw2sim.render import render
+from ...sharp import save_render
 from .. import load_script
 from . import design
 from ..shared import assembly_drawing, drawing_figures, part_drawing
@@ -70,9 +71,9 @@ def model_picture(path: Path) -> None:
     car = s.Car()
     car.command(speed=0.0, steering=0.35)
     car.run(1.0)
-    image = render(car.model, car.data, width=960, height=560, lookat=[0.2, 0.0, 0.02],
-                   distance=1.25, azimuth=215, elevation=-28)
-    save_png(image, path)
+    save_render(path, lambda w, h: render(car.model, car.data, width=w, height=h,
+                                          lookat=[0.2, 0.0, 0.02], distance=1.25,
+                                          azimuth=215, elevation=-28), 960, 560)
 
 
 def _predicted(ax, radius, colour="0.35", label="predicted circle"):
@@ -208,7 +209,7 @@ FIGURES = [
                       phone=True),
     *drawing_figures(MEDIA, "assembly", assembly_drawing, design.robot, DESIGN + ["course/exporter_format.py"], "Assembly",
                       phone=True),
-    Figure(f"{MEDIA}/model.png", model_picture, SIM, "The car in MuJoCo"),
+    Figure(f"{MEDIA}/model.png", model_picture, SIM, "The car in MuJoCo", sharp=True),
     Figure(f"{MEDIA}/path_vs_circle.png", path_vs_circle, SIM, "Driven paths against the predicted circles", phone=True),
     Figure(f"{MEDIA}/knuckle_angles.png", knuckle_angles, SIM, "Knuckle angles against Equation 4", phone=True),
     Figure(f"{MEDIA}/not_ideal.png", not_ideal, SIM, "Equal speeds and parallel steering", phone=True),
