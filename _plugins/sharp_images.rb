@@ -1,17 +1,21 @@
 # frozen_string_literal: true
 
-# A plot has a sharp file beside it, for screens of 2 device pixels to the CSS pixel
-# (course/sharp.py): media/x.png and media/x-2x.png. This hook offers both on the plot's
-# <img>,
+# A plot or a render has a sharp file beside it, for screens of 2 device pixels to the CSS
+# pixel (course/sharp.py): media/x.png and media/x-2x.png. This hook offers both on the
+# picture's <img> by their widths, with the width the page shows it at,
 #
-#     <img src="/media/.../reach.png" srcset="/media/.../reach.png 1x, /media/.../reach-2x.png 2x" ...>
+#     <img srcset="/media/.../reach.png 910w, /media/.../reach-2x.png 1820w"
+#          sizes="(max-width: 59.99rem) min(calc(100vw - 2rem), 910px),
+#                 min(calc(100vw - 22rem), 910px, 63rem)" src="/media/.../reach.png" ...>
 #
-# so that such a screen fetches the sharp one and any other the plain one. The sharp file
-# is at most twice the widest column (1008 px) wide: for a plot wider than that, its
-# density is less than 2 (2016 / 1560 = 1.292x), which is what the widest column shows.
-# The <img> keeps its src, width and height (lazy_images.rb): the picture takes the same
-# space whichever file the browser fetches. Where the <img> sits in a <picture> with a
-# phone variant (phone_figures.rb), the <source> still wins in narrow windows.
+# so that the browser fetches the sharp one only where the plain one has fewer pixels than
+# the screen shows: a laptop at 2x does, one at 1x does not; a phone with no phone variant
+# to take (a render) does at 3x, and the sharp file, in 256 colours, weighs less than the
+# plain one. The widest column is 63rem (--wide in main.css, 1008 px),
+# so a sharp file is at most 2016 px wide. The <img> keeps its src, width and height
+# (lazy_images.rb): the picture takes the same space whichever file the browser fetches.
+# Where the <img> sits in a <picture> with a phone variant (phone_figures.rb), the
+# <source> still wins in narrow windows.
 module Sw2simSite
   module SharpImages
     SUFFIX = "-2x"
@@ -27,12 +31,20 @@ module Sw2simSite
         sharp = LazyImages.size_of(LazyImages.local_file(sharp_src, site_root, baseurl))
         next tag unless plain && sharp && sharp[0] > plain[0]
 
-        density = format("%.3f", sharp[0].to_f / plain[0]).sub(/\.?0+\z/, "")
-        tag.sub(/<img\b/i, %(<img srcset="#{src} 1x, #{sharp_src} #{density}x"))
+        tag.sub(/<img\b/i, %(<img srcset="#{src} #{plain[0]}w, #{sharp_src} #{sharp[0]}w" ) +
+                           %(sizes="#{sizes(plain[0])}"))
       end
     end
 
-    # The sharp file's address of a plot under /media/ (nil for any other image, and for
+    # How wide the page shows a picture `width` pixels wide: its own width, or the column's
+    # where that is narrower (below 60rem the window less 2rem of margins; from 60rem less
+    # the sidebar's and margins' 22rem too, and at most --wide).
+    def sizes(width)
+      "(max-width: 59.99rem) min(calc(100vw - 2rem), #{width}px), " \
+        "min(calc(100vw - 22rem), #{width}px, 63rem)"
+    end
+
+    # The sharp file's address of a picture under /media/ (nil for any other image, and for
     # the variants themselves).
     def sharp_variant(src)
       return nil unless src

@@ -175,14 +175,21 @@
       // Figures with a phone variant: the button takes the whole <picture>, which
       // chooses the variant (_plugins/phone_figures.rb), and the enlarged view opens the
       // figure at full size, the <img>'s own src, whichever variant the page shows (and
-      // its srcset: a plot's sharp file on a screen that needs it, _plugins/sharp_images.rb).
+      // its srcset: a picture's sharp file on a screen that needs it, _plugins/sharp_images.rb;
+      // the srcset's widths are read against the figure's own width, set first in sizes).
       var shown = image.parentNode.nodeName === "PICTURE" ? image.parentNode : image;
       shown.parentNode.insertBefore(button, shown);
       button.appendChild(shown);
       button.addEventListener("click", function () {
         opener = button;
         var sharp = image.getAttribute("srcset");
-        if (sharp) big.setAttribute("srcset", sharp); else big.removeAttribute("srcset");
+        if (sharp) {
+          big.setAttribute("sizes", (image.getAttribute("width") || image.naturalWidth) + "px");
+          big.setAttribute("srcset", sharp);
+        } else {
+          big.removeAttribute("srcset");
+          big.removeAttribute("sizes");
+        }
         big.src = image.src;
         big.alt = image.getAttribute("alt") || "";
         document.body.classList.add("lightbox-open");

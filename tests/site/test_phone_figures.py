@@ -104,14 +104,17 @@ def test_the_site_offers_every_phone_variant_on_a_page(whole_site):  # noqa: F81
     assert offered == variants, f"not offered: {sorted(variants - offered)}"
 
 
-def test_a_plot_offers_its_sharp_file_by_its_density(tiny):
-    """The <img> offers the sharp file at twice the density, or at what the widest column
-    makes of it (2016 / 1560), and keeps its src and size; the photo offers nothing."""
+def test_a_plot_offers_its_sharp_file_by_its_width(tiny):
+    """The <img> offers the plain and the sharp file by their widths, with the width the
+    page shows it at (its own, or the column's where that is narrower, at most 63rem), and
+    keeps its src and size; the photo offers nothing."""
     img = re.search(r'<img\b[^>]*src="[^"]*/plot.png"[^>]*>', tiny)[0]
-    assert f'srcset="{BASE}/media/plot.png 1x, {BASE}/media/plot-2x.png 2x"' in img, img
+    assert f'srcset="{BASE}/media/plot.png 1040w, {BASE}/media/plot-2x.png 2080w"' in img, img
+    assert ('sizes="(max-width: 59.99rem) min(calc(100vw - 2rem), 1040px), '
+            'min(calc(100vw - 22rem), 1040px, 63rem)"') in img, img
     assert 'width="1040" height="546"' in img
     wide = re.search(r'<img\b[^>]*src="[^"]*/wide.png"[^>]*>', tiny)[0]
-    assert f'srcset="{BASE}/media/wide.png 1x, {BASE}/media/wide-2x.png 1.292x"' in wide, wide
+    assert f'srcset="{BASE}/media/wide.png 1560w, {BASE}/media/wide-2x.png 2016w"' in wide, wide
     photo = re.search(r'<img\b[^>]*src="[^"]*/photo.png"[^>]*>', tiny)[0]
     assert "srcset" not in photo
 
@@ -121,5 +124,5 @@ def test_the_site_offers_every_sharp_file(whole_site):  # noqa: F811
                for srcset in re.findall(r'<img [^>]*srcset="([^"]+)"', page.read_text(encoding="utf-8"))
                for candidate in srcset.split(",")}
     sharp = {p.relative_to(ROOT).as_posix() for p in (ROOT / "media").rglob("*-2x.png")}
-    assert len(sharp) >= 15
+    assert len(sharp) >= 22 and {"media/practice-3/model-2x.png", "media/practice-1/joint_axes-2x.png"} <= sharp
     assert sharp <= offered, f"not offered: {sorted(sharp - offered)}"

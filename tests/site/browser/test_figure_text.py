@@ -225,6 +225,33 @@ def test_a_laptop_fetches_the_plot_file_its_screen_needs(browser, site):
     assert all(file.endswith("-2x.png") for file in shown[2].values()), shown[2]
 
 
+def test_a_render_s_sharp_file_goes_to_the_screens_that_need_it(browser, site):
+    """A MuJoCo render has a sharp file too (course/sharp.py save_render). A laptop at 1
+    device pixel to the CSS pixel fetches the plain file; at 2, the sharp one; a phone at 3,
+    whose column would show the plain 960 px at 2.7 image pixels to the CSS pixel, the
+    sharp one as well, which in 256 colours weighs less than the plain one. Each file has
+    at least as many pixels across as the screen shows."""
+    path = "/practice-3/modelling/"
+    seen = {}
+    for name, viewport, density in (("laptop 1x", LAPTOP, 1), ("laptop 2x", LAPTOP, 2),
+                                    ("phone 3x", PHONES[1], 3)):
+        context = browser.new_context(viewport=viewport, device_scale_factor=density)
+        try:
+            page = context.new_page()
+            page.goto(site.url(path))
+            renders = [f for f in page.evaluate(FIGURES)
+                       if f["src"].endswith("/model.png") and f["shown"]]   # not the 3D viewer's still
+            assert len(renders) == 1, f"{path}: the render of the model, once: {renders}"
+            seen[name] = renders[0]["file"].rsplit("/", 1)[1]
+            width = Image.open(site.root / renders[0]["file"].lstrip("/")).width
+            assert width >= density * renders[0]["shown"], (name, width, renders[0]["shown"])
+        finally:
+            context.close()
+    assert seen == {"laptop 1x": "model.png", "laptop 2x": "model-2x.png", "phone 3x": "model-2x.png"}, seen
+    media = site.root / "media" / "practice-3"
+    assert (media / "model-2x.png").stat().st_size < (media / "model.png").stat().st_size
+
+
 def test_each_drawing_links_its_whole_sheet(site):
     """A drawing shows its views on the page; its caption links the whole sheet."""
     drawings = sorted(site.root.glob("media/practice-*/*-sheet.svg"))
