@@ -10,8 +10,8 @@
 #
 # so that the browser fetches the sharp one only where the plain one has fewer pixels than
 # the screen shows: a laptop at 2x does, one at 1x does not; a phone with no phone variant
-# to take (a render) does at 3x, and the sharp file, in 256 colours, weighs less than the
-# plain one. The widest column is 63rem (--wide in main.css, 1008 px),
+# to take (a render) does at 3x, and the sharp file, in 256 colours, weighs about what the
+# plain one does. The widest column is 63rem (--wide in main.css, 1008 px),
 # so a sharp file is at most 2016 px wide. The <img> keeps its src, width and height
 # (lazy_images.rb): the picture takes the same space whichever file the browser fetches.
 # Where the <img> sits in a <picture> with a phone variant (phone_figures.rb), the

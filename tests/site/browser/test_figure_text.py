@@ -229,8 +229,8 @@ def test_a_render_s_sharp_file_goes_to_the_screens_that_need_it(browser, site):
     """A MuJoCo render has a sharp file too (course/sharp.py save_render). A laptop at 1
     device pixel to the CSS pixel fetches the plain file; at 2, the sharp one; a phone at 3,
     whose column would show the plain 960 px at 2.7 image pixels to the CSS pixel, the
-    sharp one as well, which in 256 colours weighs less than the plain one. Each file has
-    at least as many pixels across as the screen shows."""
+    sharp one as well, which in 256 colours weighs at most half as much again as the plain
+    one. Each file has at least as many pixels across as the screen shows."""
     path = "/practice-3/modelling/"
     seen = {}
     for name, viewport, density in (("laptop 1x", LAPTOP, 1), ("laptop 2x", LAPTOP, 2),
@@ -249,7 +249,7 @@ def test_a_render_s_sharp_file_goes_to_the_screens_that_need_it(browser, site):
             context.close()
     assert seen == {"laptop 1x": "model.png", "laptop 2x": "model-2x.png", "phone 3x": "model-2x.png"}, seen
     media = site.root / "media" / "practice-3"
-    assert (media / "model-2x.png").stat().st_size < (media / "model.png").stat().st_size
+    assert (media / "model-2x.png").stat().st_size <= 1.5 * (media / "model.png").stat().st_size
 
 
 def test_each_drawing_links_its_whole_sheet(site):
