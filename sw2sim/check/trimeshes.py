@@ -189,9 +189,10 @@ def _obj(data: bytes) -> Mesh:
     for column, limit in zip(refs.T[1:], limits[1:]):
         key, scale = key * limit + column, scale * limit
     combos, inverse = np.unique(key, return_inverse=True)
+    kept = combos // scale   # the vertex of each distinct corner
     used = np.zeros(len(vertices), dtype=bool)
-    used[combos // scale] = True
-    return Mesh(vertices[combos // scale], inverse.reshape(-1, 3), loose=vertices[~used])
+    used[kept] = True
+    return Mesh(vertices[kept], inverse.reshape(-1, 3), loose=vertices[~used])
 
 
 def _obj_positions(data: bytes) -> tuple[bytes, dict[bytes, int], np.ndarray]:
