@@ -2,7 +2,7 @@
 
 # What every <img> of a rendered page gets, in one hook so that the order is seen:
 # - a phone variant in a <picture> where the figure has one (phone_figures.rb);
-# - the sharp file for 2x screens in its srcset where the plot has one (sharp_images.rb);
+# - the sharp file for 2x screens in its srcset where the picture has one (sharp_images.rb);
 # - loading="lazy", width and height (lazy_images.rb).
 # Each reads only an <img>'s src and adds nothing another looks for. After rendering, the
 # src attributes carry the baseurl (site_links.rb), and so do the variants' addresses made

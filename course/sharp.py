@@ -24,13 +24,13 @@ DENSITY = 2.0
 
 
 def sharp_path(path: str | Path) -> Path:
-    """Where the sharp file of the plot at `path` goes: beside it, SUFFIX added."""
+    """Where the sharp file of the picture at `path` goes: beside it, SUFFIX added."""
     path = Path(path)
     return path.with_name(f"{path.stem}{SUFFIX}{path.suffix}")
 
 
 def sharp_pixels(width: float) -> int:
-    """How wide the sharp file of a plot `width` pixels wide is."""
+    """How wide the sharp file of a picture `width` pixels wide is."""
     return round(DENSITY * min(width, COLUMN_PX))
 
 
@@ -51,6 +51,6 @@ def save_render(path: str | Path, render_at: Callable[[int, int], np.ndarray], w
 
 
 def sharp_paths(path: str | Path) -> list[Path]:
-    """The sharp file of the figure at `path` if it is a plot (a PNG); an SVG is sharp on
-    any screen."""
+    """The sharp file of the figure at `path` if it is a PNG (a plot or a render); an SVG
+    is sharp on any screen."""
     return [sharp_path(path)] if Path(path).suffix == ".png" else []

@@ -16,7 +16,7 @@ import pytest
 from parallel_jobs import selected, workers
 from PIL import Image
 
-from course.media import all_figures, is_current, make_figure, read_manifest, variant_paths
+from course.media import all_figures, is_current, make_figure, read_manifest
 from course.phone import DENSE_SUFFIX
 from course.phone import SUFFIX as PHONE_SUFFIX
 from course.sharp import SUFFIX as SHARP_SUFFIX
@@ -105,7 +105,7 @@ def test_figure_matches_what_its_code_makes(fig, made, current):
     if isinstance(result, str):   # a program it needs is not installed here (RViz, say)
         pytest.skip(f"{fig.output} cannot be made here: {result}")
     # the figure, then its variants if it has them
-    for output, made_now in zip(fig.outputs, (fresh, *variant_paths(fresh))):
+    for output, made_now in zip(fig.outputs, (fresh, *fig.variants(fresh))):
         committed = ROOT / output
         if committed.suffix == ".svg":
             assert made_now.read_text() == committed.read_text(), f"{output} differs; run `make media`"
